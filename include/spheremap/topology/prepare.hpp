@@ -1,0 +1,60 @@
+// From a polygon soup to a closed, oriented, 2-manifold genus-0 triangle mesh, or a clear refusal
+// (stage: topology).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "spheremap/mesh.hpp"
+
+namespace spheremap {
+
+struct PrepareOptions {
+  /// Vertices closer than this (Euclidean) are welded; 0 welds exactly coincident ones only.
+  double weld_tolerance = 0;
+  /// Which connected component to keep when there are several: -1 = refuse (default),
+  /// -2 = the largest (most triangles; ties to the first), k >= 0 = component k in the order of
+  /// their first triangle in the file.
+  int component = -1;
+  /// Name used in messages (usually the input file name).
+  std::string source_name = "mesh";
+};
+
+inline constexpr int kComponentRefuse = -1;
+inline constexpr int kComponentLargest = -2;
+
+struct PrepareReport {
+  std::int64_t input_vertices = 0;
+  std::int64_t input_faces = 0;
+  std::int64_t polygons_triangulated = 0;  // faces with more than 3 corners
+  std::int64_t vertices_welded = 0;        // input vertices merged into another one
+  std::int64_t unreferenced_vertices = 0;  // dropped because no triangle uses them
+  std::int64_t degenerate_faces_dropped = 0;  // a corner repeated after welding
+  std::int64_t duplicate_faces_dropped = 0;   // same three vertices as an earlier triangle
+  std::int64_t components = 0;
+  std::int64_t component_kept = 0;
+  std::int64_t triangles_flipped = 0;  // re-oriented for consistency or to face outward
+  int genus = 0;
+  /// original_vertex[i] = index in the input file of the vertex that became vertex i.
+  std::vector<std::int32_t> original_vertex;
+};
+
+struct PreparedMesh {
+  Mesh mesh;
+  PrepareReport report;
+};
+
+/// Triangulates polygons (fan from the first corner), welds vertices, drops degenerate and duplicate
+/// triangles and unreferenced vertices, then checks, in this order: non-manifold edges (shared by more
+/// than two triangles), boundary edges, non-manifold (pinched) vertices, several components (unless
+/// options.component says which), orientability, genus. Orients every triangle consistently and
+/// outward (positive enclosed volume).
+/// Throws MeshRefused (exit code 2) naming options.source_name, the problem, how many and the fix.
+/// Throws InputError if the soup has no faces or an index out of range.
+PreparedMesh prepare_mesh(const PolygonSoup& soup, const PrepareOptions& options = {});
+
+/// Same checks for an already triangulated mesh (attributes are carried along).
+PreparedMesh prepare_mesh(const Mesh& mesh, const PrepareOptions& options = {});
+
+}  // namespace spheremap

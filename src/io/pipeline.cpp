@@ -1,0 +1,192 @@
+#include "spheremap/pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "spheremap/error.hpp"
+#include "spheremap/io/mesh_io.hpp"
+
+namespace spheremap {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+nlohmann::json certificate_json(const Certificate& c) {
+  static constexpr std::size_t kListed = 1000;  // the report lists at most this many bad triangles of each kind
+  auto head = [](const std::vector<std::int32_t>& v) {
+    return std::vector<std::int32_t>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(v.size(), kListed)));
+  };
+  return {{"certified", c.certified()},
+          {"triangles", c.triangle_count},
+          {"folded", c.folded},
+          {"collapsed", c.collapsed},
+          {"decided_exactly", c.decided_exactly},
+          {"total_solid_angle", c.total_solid_angle},
+          {"coverage", c.coverage},
+          {"min_area_ratio", c.min_area_ratio},
+          {"collapse_floor", c.collapse_floor},
+          {"folded_triangles", head(c.folded_triangles)},
+          {"collapsed_triangles", head(c.collapsed_triangles)}};
+}
+
+}  // namespace
+
+MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const PolygonSoup soup = read_polygon_soup(input);
+  const double read_seconds = seconds_since(start);
+  MapJobOptions named = options;
+  if (named.prepare.source_name == "mesh") named.prepare.source_name = input.string();
+  const auto prepare_start = std::chrono::steady_clock::now();
+  PreparedMesh prepared = prepare_mesh(soup, named.prepare);
+  const double prepare_seconds = seconds_since(prepare_start);
+  MapJobResult result;
+  result.input = input;
+  result.read_seconds = read_seconds;
+  result.prepare_seconds = prepare_seconds;
+  result.prepared = std::move(prepared);
+  result.map = map_to_sphere(result.prepared.mesh, options.map);
+  const auto metrics_start = std::chrono::steady_clock::now();
+  result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
+  result.metrics_seconds = seconds_since(metrics_start);
+  return result;
+}
+
+MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJobOptions& options) {
+  MapJobOptions named = options;
+  named.prepare.source_name = name;
+  MapJobResult result;
+  result.input = name;
+  const auto prepare_start = std::chrono::steady_clock::now();
+  result.prepared = prepare_mesh(mesh, named.prepare);
+  result.prepare_seconds = seconds_since(prepare_start);
+  result.map = map_to_sphere(result.prepared.mesh, options.map);
+  const auto metrics_start = std::chrono::steady_clock::now();
+  result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
+  result.metrics_seconds = seconds_since(metrics_start);
+  return result;
+}
+
+nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& options) {
+  const auto& map = result.map;
+  const auto& prep = result.prepared.report;
+  const auto& m = result.metrics;
+  nlohmann::json timings = nlohmann::json::object();
+  timings["read"] = result.read_seconds;
+  timings["prepare"] = result.prepare_seconds;
+  for (const auto& t : map.timings) timings[t.stage] = t.seconds;
+  timings["metrics"] = result.metrics_seconds;
+  nlohmann::json splits = nlohmann::json::array();
+  for (const auto& s : map.split_edges)
+    splits.push_back({{"a", s.a}, {"b", s.b}, {"ring", std::string(1, s.pole)}});
+  const auto& r = map.superposition.rotation;
+  return {
+      {"spheremap_version", "0.1.0"},
+      {"input", result.input.string()},
+      {"options",
+       {{"weights", to_string(options.map.weights)},
+        {"solver", to_string(options.map.solver)},
+        {"repair", options.map.repair},
+        {"collapse_floor", options.map.collapse_floor},
+        {"weld_tolerance", options.prepare.weld_tolerance},
+        {"poles_given", map.poles_from_options}}},
+      {"mesh",
+       {{"vertices", result.prepared.mesh.vertex_count()},
+        {"triangles", result.prepared.mesh.triangle_count()},
+        {"input_vertices", prep.input_vertices},
+        {"input_faces", prep.input_faces},
+        {"polygons_triangulated", prep.polygons_triangulated},
+        {"vertices_welded", prep.vertices_welded},
+        {"unreferenced_vertices_dropped", prep.unreferenced_vertices},
+        {"degenerate_faces_dropped", prep.degenerate_faces_dropped},
+        {"duplicate_faces_dropped", prep.duplicate_faces_dropped},
+        {"components", prep.components},
+        {"component_kept", prep.component_kept},
+        {"triangles_reoriented", prep.triangles_flipped},
+        {"genus", prep.genus}}},
+      {"map",
+       {{"method", map.method},
+        {"north_pole", map.north},
+        {"south_pole", map.south},
+        {"pole_graph_distance", map.pole_graph_distance},
+        {"theta0", map.theta0},
+        {"mercator_c", map.mercator_c},
+        {"ring_z", map.ring_z},
+        {"north_ring_size", map.north_ring_size},
+        {"south_ring_size", map.south_ring_size},
+        {"split_edges", splits},
+        {"meridian_length", map.meridian.size()},
+        {"solver", map.solver_used},
+        {"gauss_seidel_sweeps", map.gauss_seidel_sweeps},
+        {"gauss_seidel_converged", map.gauss_seidel_converged},
+        {"weight_fallback_rows", map.weight_fallback_rows},
+        {"reweighting_rounds", map.reweighting_rounds},
+        {"untangling_moves", map.untangling_moves},
+        {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
+        {"superposition_rmsd", map.superposition.rmsd},
+        {"superposition_scale", map.superposition.scale}}},
+      {"certificate", certificate_json(map.certificate)},
+      {"plain_algorithm_certificate", certificate_json(map.plain_certificate)},
+      {"distortion",
+       {{"area_distortion_mean_percent", m.area_distortion_mean_percent},
+        {"area_distortion_max_percent", m.area_distortion_max_percent},
+        {"area_log_ratio_mean", m.area_log_ratio_mean},
+        {"angle_distortion_mean_degrees", m.angle_distortion_mean_degrees},
+        {"angle_distortion_rms_degrees", m.angle_distortion_rms_degrees},
+        {"angle_distortion_max_degrees", m.angle_distortion_max_degrees},
+        {"dilatation_mean", m.dilatation_mean},
+        {"dilatation_max", m.dilatation_max},
+        {"octant_area_percent", std::vector<double>(m.octant_area_percent.begin(), m.octant_area_percent.end())},
+        {"octant_rms_deviation_percent", m.octant_rms_deviation_percent}}},
+      {"timings_seconds", timings},
+  };
+}
+
+std::string summary_text(const MapJobResult& result) {
+  const auto& map = result.map;
+  const auto& c = map.certificate;
+  const auto& m = result.metrics;
+  double total_seconds = result.read_seconds + result.prepare_seconds + result.metrics_seconds;
+  for (const auto& t : map.timings) total_seconds += t.seconds;
+  std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
+                                 result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
+  text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n", map.method,
+                      map.north, map.south, map.pole_graph_distance, map.split_edges.size(), map.solver_used);
+  text += fmt::format("  plain algorithm: {} folded, {} collapsed; repair: {} re-weighting rounds, {} untangling moves\n",
+                      map.plain_certificate.folded, map.plain_certificate.collapsed, map.reweighting_rounds,
+                      map.untangling_moves);
+  text += fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
+                      c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage,
+                      c.decided_exactly);
+  text += fmt::format("  area distortion {:.1f}% mean ({:.0f}% max), angle distortion {:.1f}° mean ({:.1f}° RMS), "
+                      "dilatation {:.2f} mean, octant RMS {:.1f}%\n",
+                      m.area_distortion_mean_percent, m.area_distortion_max_percent, m.angle_distortion_mean_degrees,
+                      m.angle_distortion_rms_degrees, m.dilatation_mean, m.octant_rms_deviation_percent);
+  text += fmt::format("  superposition RMSD {:.4g}; total {:.3f} s\n", map.superposition.rmsd, total_seconds);
+  return text;
+}
+
+void write_map_outputs(const std::filesystem::path& directory, const MapJobResult& result,
+                       const MapJobOptions& options) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error)
+    throw InputError(fmt::format("{}: cannot create the output folder: {}", directory.string(), error.message()));
+  Mesh surface = result.prepared.mesh;
+  surface.real_attributes["theta"] = result.map.theta;
+  surface.real_attributes["phi"] = result.map.phi;
+  surface.integer_attributes["input_vertex"] = result.prepared.report.original_vertex;
+  Mesh sphere = surface;
+  sphere.positions = result.map.sphere;
+  const PlyWriteOptions ply{options.ascii};
+  write_ply(directory / "surface.ply", surface, ply);
+  write_ply(directory / "sphere.ply", sphere, ply);
+  write_file_atomically(directory / "report.json", make_report(result, options).dump(2) + "\n");
+}
+
+}  // namespace spheremap

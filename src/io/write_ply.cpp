@@ -1,0 +1,109 @@
+// write_ply: the whole file is built in memory (deterministic bytes), then written atomically.
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <iterator>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "spheremap/io/mesh_io.hpp"
+
+namespace spheremap {
+namespace {
+
+// Attribute names become PLY tokens, and x, y, z are taken by the positions.
+void check_writable(const Mesh& mesh) {
+  const auto check_name = [](const std::string& name) {
+    const bool has_space = std::any_of(name.begin(), name.end(), [](unsigned char c) { return c <= ' ' || c >= 0x7F; });
+    if (name.empty() || has_space || name == "x" || name == "y" || name == "z") {
+      throw std::invalid_argument(fmt::format("write_ply: attribute name '{}' cannot be a PLY property name", name));
+    }
+  };
+  const auto check_size = [&](const std::string& name, std::size_t size) {
+    if (size != mesh.positions.size()) {
+      throw std::invalid_argument(fmt::format("write_ply: attribute '{}' has {} values for {} vertices", name, size,
+                                              mesh.positions.size()));
+    }
+  };
+  for (const auto& [name, values] : mesh.real_attributes) {
+    check_name(name);
+    check_size(name, values.size());
+  }
+  for (const auto& [name, values] : mesh.integer_attributes) {
+    check_name(name);
+    check_size(name, values.size());
+    if (mesh.real_attributes.count(name) != 0) {
+      throw std::invalid_argument(fmt::format("write_ply: attribute '{}' is both real and integer", name));
+    }
+  }
+}
+
+std::string header(const Mesh& mesh, bool ascii) {
+  std::string text = "ply\n";
+  text += ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
+  text += "comment written by spheremap\n";
+  text += fmt::format("element vertex {}\n", mesh.positions.size());
+  text += "property double x\nproperty double y\nproperty double z\n";
+  for (const auto& [name, values] : mesh.real_attributes) text += fmt::format("property double {}\n", name);
+  for (const auto& [name, values] : mesh.integer_attributes) text += fmt::format("property int {}\n", name);
+  text += fmt::format("element face {}\n", mesh.triangles.size());
+  text += "property list uchar int vertex_indices\n";
+  text += "end_header\n";
+  return text;
+}
+
+template <typename T>
+void append_little_endian(std::string& out, T value) {
+  std::array<char, sizeof(T)> bytes;
+  std::memcpy(bytes.data(), &value, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+  out.append(bytes.data(), bytes.size());
+}
+
+void append_binary_body(std::string& out, const Mesh& mesh) {
+  constexpr std::size_t kTriangleBytes = 1 + 3 * sizeof(std::int32_t);
+  out.reserve(out.size() +
+              mesh.positions.size() * (sizeof(double) * (3 + mesh.real_attributes.size()) +
+                                       sizeof(std::int32_t) * mesh.integer_attributes.size()) +
+              mesh.triangles.size() * kTriangleBytes);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    for (const double coordinate : mesh.positions[v]) append_little_endian(out, coordinate);
+    for (const auto& [name, values] : mesh.real_attributes) append_little_endian(out, values[v]);
+    for (const auto& [name, values] : mesh.integer_attributes) append_little_endian(out, values[v]);
+  }
+  for (const Triangle& triangle : mesh.triangles) {
+    out.push_back(static_cast<char>(3));
+    for (const std::int32_t index : triangle) append_little_endian(out, index);
+  }
+}
+
+void append_ascii_body(std::string& out, const Mesh& mesh) {
+  auto sink = std::back_inserter(out);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    // 17 significant digits make every double read back bit-exact.
+    fmt::format_to(sink, "{:.17g} {:.17g} {:.17g}", p[0], p[1], p[2]);
+    for (const auto& [name, values] : mesh.real_attributes) fmt::format_to(sink, " {:.17g}", values[v]);
+    for (const auto& [name, values] : mesh.integer_attributes) fmt::format_to(sink, " {}", values[v]);
+    out.push_back('\n');
+  }
+  for (const Triangle& t : mesh.triangles) fmt::format_to(sink, "3 {} {} {}\n", t[0], t[1], t[2]);
+}
+
+}  // namespace
+
+void write_ply(const std::filesystem::path& path, const Mesh& mesh, const PlyWriteOptions& options) {
+  check_writable(mesh);
+  std::string contents = header(mesh, options.ascii);
+  if (options.ascii) {
+    append_ascii_body(contents, mesh);
+  } else {
+    append_binary_body(contents, mesh);
+  }
+  write_file_atomically(path, contents);
+}
+
+}  // namespace spheremap

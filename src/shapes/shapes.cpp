@@ -1,0 +1,447 @@
+#include "spheremap/shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "spheremap/geometry/vec.hpp"
+
+namespace spheremap {
+namespace {
+
+constexpr std::int64_t kMaxVertexCount = std::numeric_limits<std::int32_t>::max();
+
+// Half-edge h = 3 * triangle + corner runs from triangles[t][corner] to triangles[t][corner + 1].
+std::size_t next_half_edge(std::size_t h) { return h - h % 3 + (h + 1) % 3; }
+std::size_t previous_half_edge(std::size_t h) { return h - h % 3 + (h + 2) % 3; }
+std::int32_t half_edge_origin(const std::vector<Triangle>& triangles, std::size_t h) { return triangles[h / 3][h % 3]; }
+std::int32_t half_edge_target(const std::vector<Triangle>& triangles, std::size_t h) {
+  return triangles[h / 3][(h + 1) % 3];
+}
+
+/// Uniform double in [0, 1) from 53 raw bits of the generator. std::mt19937's raw output is fixed by
+/// the standard, unlike std::uniform_real_distribution, so meshes are identical across standard libraries.
+double uniform_unit(std::mt19937& generator) {
+  const std::uint64_t high_27_bits = generator() >> 5;
+  const std::uint64_t low_26_bits = generator() >> 6;
+  return (static_cast<double>(high_27_bits) * 67108864.0 + static_cast<double>(low_26_bits)) / 9007199254740992.0;
+}
+
+Vec3 random_point_in_unit_ball(std::mt19937& generator) {
+  // Rejection from the cube: uniform in the ball, and deterministic because the draw sequence is
+  // (braced initializers evaluate left to right, unlike function arguments).
+  while (true) {
+    const Vec3 candidate{2 * uniform_unit(generator) - 1, 2 * uniform_unit(generator) - 1, 2 * uniform_unit(generator) - 1};
+    if (dot(candidate, candidate) <= 1) return candidate;
+  }
+}
+
+void require_valid_indices(const Mesh& mesh, const char* function) {
+  const auto vertex_count = static_cast<std::int64_t>(mesh.positions.size());
+  for (const auto& triangle : mesh.triangles)
+    for (const auto v : triangle)
+      if (v < 0 || v >= vertex_count)
+        throw std::invalid_argument(std::string(function) + ": triangle index " + std::to_string(v) + " out of range");
+}
+
+/// Both half-edges of an edge share one edge id; ids are dense and numbered in (lower vertex,
+/// higher vertex) order, so the numbering is deterministic.
+struct EdgeNumbering {
+  std::vector<std::int32_t> edge_of_half_edge;
+  std::vector<std::array<std::int32_t, 2>> edge_endpoints;  // lower vertex first
+};
+
+EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles) {
+  // Bucket every half-edge under its lower endpoint (counting sort), then sort each small bucket by the
+  // higher endpoint: linear overall, and far faster than a hash map of edges for millions of triangles.
+  const std::size_t half_edge_count = 3 * triangles.size();
+  std::vector<std::size_t> bucket_start(vertex_count + 1, 0);
+  for (std::size_t h = 0; h < half_edge_count; ++h) {
+    const auto lower = std::min(half_edge_origin(triangles, h), half_edge_target(triangles, h));
+    ++bucket_start[static_cast<std::size_t>(lower) + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) bucket_start[v + 1] += bucket_start[v];
+
+  struct Entry {
+    std::int32_t higher_vertex;
+    std::size_t half_edge;
+  };
+  std::vector<Entry> entries(half_edge_count);
+  {
+    std::vector<std::size_t> fill(bucket_start.begin(), bucket_start.end() - 1);
+    for (std::size_t h = 0; h < half_edge_count; ++h) {
+      const auto a = half_edge_origin(triangles, h), b = half_edge_target(triangles, h);
+      entries[fill[static_cast<std::size_t>(std::min(a, b))]++] = {std::max(a, b), h};
+    }
+  }
+
+  EdgeNumbering numbering;
+  numbering.edge_of_half_edge.resize(half_edge_count);
+  numbering.edge_endpoints.reserve(half_edge_count / 2 + 1);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const auto begin = entries.begin() + static_cast<std::ptrdiff_t>(bucket_start[v]);
+    const auto end = entries.begin() + static_cast<std::ptrdiff_t>(bucket_start[v + 1]);
+    // Ties broken by half-edge index so the numbering never depends on the sort's stability.
+    std::sort(begin, end, [](const Entry& x, const Entry& y) {
+      return x.higher_vertex != y.higher_vertex ? x.higher_vertex < y.higher_vertex : x.half_edge < y.half_edge;
+    });
+    for (auto it = begin; it != end; ++it) {
+      if (it == begin || it->higher_vertex != (it - 1)->higher_vertex) {
+        if (numbering.edge_endpoints.size() >= static_cast<std::size_t>(kMaxVertexCount))
+          throw std::invalid_argument("number_edges: too many edges for 32-bit indices");
+        numbering.edge_endpoints.push_back({static_cast<std::int32_t>(v), it->higher_vertex});
+      }
+      numbering.edge_of_half_edge[it->half_edge] = static_cast<std::int32_t>(numbering.edge_endpoints.size() - 1);
+    }
+  }
+  return numbering;
+}
+
+/// One 1-to-4 split: the midpoint of edge e becomes vertex (old vertex count + e), so midpoints are
+/// shared between the two triangles of an edge. With `project_to_unit_sphere` midpoints are normalized.
+void subdivide_once(std::vector<Vec3>& positions, std::vector<Triangle>& triangles, bool project_to_unit_sphere) {
+  const EdgeNumbering edges = number_edges(positions.size(), triangles);
+  const auto old_vertex_count = static_cast<std::int64_t>(positions.size());
+  if (old_vertex_count + static_cast<std::int64_t>(edges.edge_endpoints.size()) > kMaxVertexCount)
+    throw std::invalid_argument("subdivision would exceed 2^31 - 1 vertices (32-bit triangle indices)");
+
+  positions.reserve(positions.size() + edges.edge_endpoints.size());
+  for (const auto& [a, b] : edges.edge_endpoints) {
+    const Vec3 midpoint = 0.5 * (positions[a] + positions[b]);
+    positions.push_back(project_to_unit_sphere ? normalized(midpoint) : midpoint);
+  }
+
+  std::vector<Triangle> refined;
+  refined.reserve(4 * triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto [a, b, c] = triangles[t];
+    const auto midpoint_vertex = [&](std::size_t corner) {
+      return static_cast<std::int32_t>(old_vertex_count + edges.edge_of_half_edge[3 * t + corner]);
+    };
+    const std::int32_t ab = midpoint_vertex(0), bc = midpoint_vertex(1), ca = midpoint_vertex(2);
+    // Same orientation as the parent: three corner triangles and the middle one.
+    refined.push_back({a, ab, ca});
+    refined.push_back({ab, b, bc});
+    refined.push_back({ca, bc, c});
+    refined.push_back({ab, bc, ca});
+  }
+  triangles = std::move(refined);
+}
+
+}  // namespace
+
+Mesh make_icosphere(int levels) {
+  if (levels < 0 || levels > 10)
+    throw std::invalid_argument("make_icosphere: levels must be in [0, 10], got " + std::to_string(levels));
+  const double phi = (1 + std::sqrt(5.0)) / 2;
+  Mesh mesh;
+  mesh.positions = {{-1, phi, 0}, {1, phi, 0},  {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi}, {0, 1, phi},
+                    {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1},  {phi, 0, 1},  {-phi, 0, -1}, {-phi, 0, 1}};
+  for (auto& p : mesh.positions) p = normalized(p);
+  mesh.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  const std::size_t final_vertex_count = 10 * (std::size_t{1} << (2 * levels)) + 2;
+  mesh.positions.reserve(final_vertex_count);
+  // Projecting after every level (not only at the end) keeps the triangles close to equilateral.
+  for (int level = 0; level < levels; ++level) subdivide_once(mesh.positions, mesh.triangles, true);
+  return mesh;
+}
+
+Mesh make_ellipsoid(int levels, double ax, double ay, double az) {
+  for (const double axis : {ax, ay, az})
+    if (!(std::isfinite(axis) && axis > 0))
+      throw std::invalid_argument("make_ellipsoid: semi-axes must be finite and positive (a negative one would turn the mesh inside out)");
+  Mesh mesh = make_icosphere(levels);
+  for (auto& p : mesh.positions) p = {ax * p[0], ay * p[1], az * p[2]};
+  return mesh;
+}
+
+// `rings` is the number of vertex rings strictly between the two poles, at evenly spaced x stations:
+// vertex count rings * segments + 2, (rings - 1) * segments quads plus a triangle fan at each pole.
+Mesh make_dumbbell(double separation, double neck_radius, int rings, int segments) {
+  if (!(std::isfinite(separation) && separation >= 0))
+    throw std::invalid_argument("make_dumbbell: separation must be finite and >= 0");
+  if (!(neck_radius > 0 && neck_radius < 1))
+    throw std::invalid_argument("make_dumbbell: neck_radius must be in (0, 1)");
+  if (rings < 1 || segments < 3)
+    throw std::invalid_argument("make_dumbbell: need rings >= 1 and segments >= 3");
+  if (static_cast<std::int64_t>(rings) * segments + 2 > kMaxVertexCount)
+    throw std::invalid_argument("make_dumbbell: rings * segments exceeds 32-bit triangle indices");
+
+  const double half_separation = separation / 2;
+  const double half_length = half_separation + 1;
+  // Max of the two spheres' circles and the neck: single-valued in x, continuous, and > 0 strictly
+  // inside (-half_length, half_length), so every ring is a proper polygon.
+  const auto profile_radius = [&](double x) {
+    const double left = 1 - (x + half_separation) * (x + half_separation);
+    const double right = 1 - (x - half_separation) * (x - half_separation);
+    double radius = std::sqrt(std::max({0.0, left, right}));
+    if (std::abs(x) <= half_separation) radius = std::max(radius, neck_radius);
+    return radius;
+  };
+
+  Mesh mesh;
+  mesh.positions.reserve(static_cast<std::size_t>(rings) * segments + 2);
+  const auto pi = std::acos(-1.0);
+  for (int ring = 0; ring < rings; ++ring) {
+    const double x = -half_length + 2 * half_length * (ring + 1) / (rings + 1);
+    const double radius = profile_radius(x);
+    for (int segment = 0; segment < segments; ++segment) {
+      const double angle = 2 * pi * segment / segments;
+      mesh.positions.push_back({x, radius * std::cos(angle), radius * std::sin(angle)});
+    }
+  }
+  const auto left_pole = static_cast<std::int32_t>(mesh.positions.size());
+  mesh.positions.push_back({-half_length, 0, 0});
+  const auto right_pole = static_cast<std::int32_t>(mesh.positions.size());
+  mesh.positions.push_back({half_length, 0, 0});
+
+  const auto ring_vertex = [&](int ring, int segment) {
+    return static_cast<std::int32_t>(ring * segments + segment % segments);
+  };
+  // Going around the angle, then along +x, is counter-clockwise seen from outside.
+  mesh.triangles.reserve(2 * static_cast<std::size_t>(rings) * segments);
+  for (int segment = 0; segment < segments; ++segment)
+    mesh.triangles.push_back({left_pole, ring_vertex(0, segment + 1), ring_vertex(0, segment)});
+  for (int ring = 0; ring + 1 < rings; ++ring) {
+    for (int segment = 0; segment < segments; ++segment) {
+      mesh.triangles.push_back({ring_vertex(ring, segment), ring_vertex(ring, segment + 1), ring_vertex(ring + 1, segment + 1)});
+      mesh.triangles.push_back({ring_vertex(ring, segment), ring_vertex(ring + 1, segment + 1), ring_vertex(ring + 1, segment)});
+    }
+  }
+  for (int segment = 0; segment < segments; ++segment)
+    mesh.triangles.push_back({right_pole, ring_vertex(rings - 1, segment), ring_vertex(rings - 1, segment + 1)});
+  return mesh;
+}
+
+Mesh perturb_vertices(const Mesh& mesh, double amplitude, std::uint32_t seed) {
+  if (!(std::isfinite(amplitude) && amplitude >= 0))
+    throw std::invalid_argument("perturb_vertices: amplitude must be finite and >= 0");
+  require_valid_indices(mesh, "perturb_vertices");
+
+  // Each edge of a closed mesh is seen from two triangles, so both sums count it twice: the ratio is
+  // the mean length of the vertex's edges.
+  std::vector<double> incident_length_sum(mesh.positions.size(), 0.0);
+  std::vector<int> incident_count(mesh.positions.size(), 0);
+  for (const auto& triangle : mesh.triangles) {
+    for (int corner = 0; corner < 3; ++corner) {
+      const auto a = triangle[corner], b = triangle[(corner + 1) % 3];
+      const double length = norm(mesh.positions[b] - mesh.positions[a]);
+      incident_length_sum[a] += length;
+      incident_length_sum[b] += length;
+      ++incident_count[a];
+      ++incident_count[b];
+    }
+  }
+
+  // Topology is unchanged, so the per-vertex attributes stay valid and are kept.
+  Mesh perturbed = mesh;
+  std::mt19937 generator(seed);
+  for (std::size_t v = 0; v < perturbed.positions.size(); ++v) {
+    const Vec3 direction = random_point_in_unit_ball(generator);  // drawn even for isolated vertices
+    if (incident_count[v] == 0) continue;
+    const double mean_edge_length = incident_length_sum[v] / incident_count[v];
+    perturbed.positions[v] = perturbed.positions[v] + (amplitude * mean_edge_length) * direction;
+  }
+  return perturbed;
+}
+
+Mesh random_edge_flips(const Mesh& mesh, double probability, std::uint32_t seed) {
+  if (!(probability >= 0 && probability <= 1))
+    throw std::invalid_argument("random_edge_flips: probability must be in [0, 1]");
+  require_valid_indices(mesh, "random_edge_flips");
+
+  Mesh flipped = mesh;  // vertices do not move, so attributes stay valid
+  auto& triangles = flipped.triangles;
+  const std::size_t half_edge_count = 3 * triangles.size();
+  EdgeNumbering edges = number_edges(flipped.positions.size(), triangles);
+  const std::size_t edge_count = edges.edge_endpoints.size();
+
+  // Opposite half-edges; the input must be a closed, consistently oriented edge-manifold.
+  std::vector<std::size_t> first_half_edge(edge_count, half_edge_count);
+  std::vector<std::size_t> opposite(half_edge_count, half_edge_count);
+  for (std::size_t h = 0; h < half_edge_count; ++h) {
+    const auto edge = static_cast<std::size_t>(edges.edge_of_half_edge[h]);
+    const std::size_t partner = first_half_edge[edge];
+    if (partner == half_edge_count) {
+      first_half_edge[edge] = h;
+      continue;
+    }
+    if (opposite[partner] != half_edge_count || half_edge_origin(triangles, partner) != half_edge_target(triangles, h))
+      throw std::invalid_argument("random_edge_flips: mesh is not a consistently oriented 2-manifold");
+    opposite[partner] = h;
+    opposite[h] = partner;
+  }
+  for (std::size_t h = 0; h < half_edge_count; ++h)
+    if (opposite[h] == half_edge_count)
+      throw std::invalid_argument("random_edge_flips: mesh is not closed (edge with a single triangle)");
+
+  std::vector<std::int32_t> degree(flipped.positions.size(), 0);
+  for (const auto& triangle : triangles)
+    for (const auto v : triangle) ++degree[v];
+  // The fan walk below is the edge-existence test, so each vertex must have one closed fan.
+  {
+    std::vector<char> walked(flipped.positions.size(), 0);
+    for (std::size_t h = 0; h < half_edge_count; ++h) {
+      const auto v = half_edge_origin(triangles, h);
+      if (walked[v]) continue;
+      walked[v] = 1;
+      std::int32_t fan_size = 0;
+      std::size_t around = h;
+      do {
+        ++fan_size;
+        around = opposite[previous_half_edge(around)];
+      } while (around != h && fan_size <= degree[v]);
+      if (fan_size != degree[v])
+        throw std::invalid_argument("random_edge_flips: vertex " + std::to_string(v) + " is not manifold (several fans)");
+    }
+  }
+
+  const auto are_neighbors = [&](std::size_t half_edge_from_vertex, std::int32_t other) {
+    std::size_t around = half_edge_from_vertex;
+    do {
+      if (half_edge_target(triangles, around) == other) return true;
+      around = opposite[previous_half_edge(around)];
+    } while (around != half_edge_from_vertex);
+    return false;
+  };
+  const auto normal = [&](std::int32_t a, std::int32_t b, std::int32_t c) {
+    const auto& p = flipped.positions;
+    return cross(p[b] - p[a], p[c] - p[a]);
+  };
+  const auto link = [&](std::size_t h, std::size_t g) {
+    opposite[h] = g;
+    opposite[g] = h;
+  };
+
+  // One random draw per original edge in edge-id order, whether or not it flips: the sequence of
+  // draws, hence the result, depends only on the seed and the input mesh.
+  std::mt19937 generator(seed);
+  for (std::size_t edge = 0; edge < edge_count; ++edge) {
+    if (uniform_unit(generator) >= probability) continue;
+    // The flipped edge keeps its id (it is never revisited), so first_half_edge stays a valid index.
+    const std::size_t h_ab = first_half_edge[edge];
+    const std::size_t h_ba = opposite[h_ab];
+    const std::size_t h_bc = next_half_edge(h_ab), h_ca = previous_half_edge(h_ab);
+    const std::size_t h_ad = next_half_edge(h_ba), h_db = previous_half_edge(h_ba);
+    const auto a = half_edge_origin(triangles, h_ab), b = half_edge_target(triangles, h_ab);
+    const auto c = half_edge_origin(triangles, h_ca), d = half_edge_origin(triangles, h_db);
+    if (c == d || degree[a] <= 3 || degree[b] <= 3 || are_neighbors(h_ca, d)) continue;
+
+    // Before: (a, b, c) and (b, a, d). After: (c, a, d) and (d, b, c), the same quad split along cd.
+    const Vec3 old_normal_1 = normal(a, b, c), old_normal_2 = normal(b, a, d);
+    const Vec3 new_normal_1 = normal(c, a, d), new_normal_2 = normal(d, b, c);
+    if (!(dot(new_normal_1, old_normal_1) > 0 && dot(new_normal_1, old_normal_2) > 0 &&
+          dot(new_normal_2, old_normal_1) > 0 && dot(new_normal_2, old_normal_2) > 0))
+      continue;
+
+    const std::size_t outer_ca = opposite[h_ca], outer_ad = opposite[h_ad];
+    const std::size_t outer_db = opposite[h_db], outer_bc = opposite[h_bc];
+    const auto edge_ca = edges.edge_of_half_edge[h_ca], edge_ad = edges.edge_of_half_edge[h_ad];
+    const auto edge_db = edges.edge_of_half_edge[h_db], edge_bc = edges.edge_of_half_edge[h_bc];
+
+    const std::size_t first = h_ab / 3, second = h_ba / 3;
+    triangles[first] = {c, a, d};   // half-edges: c->a, a->d, d->c
+    triangles[second] = {d, b, c};  // half-edges: d->b, b->c, c->d
+    const std::size_t new_ca = 3 * first, new_ad = 3 * first + 1, new_dc = 3 * first + 2;
+    const std::size_t new_db = 3 * second, new_bc = 3 * second + 1, new_cd = 3 * second + 2;
+    link(new_ca, outer_ca);
+    link(new_ad, outer_ad);
+    link(new_db, outer_db);
+    link(new_bc, outer_bc);
+    link(new_dc, new_cd);
+    edges.edge_of_half_edge[new_ca] = edge_ca;
+    edges.edge_of_half_edge[new_ad] = edge_ad;
+    edges.edge_of_half_edge[new_db] = edge_db;
+    edges.edge_of_half_edge[new_bc] = edge_bc;
+    edges.edge_of_half_edge[new_dc] = edges.edge_of_half_edge[new_cd] = static_cast<std::int32_t>(edge);
+    first_half_edge[static_cast<std::size_t>(edge_ca)] = new_ca;
+    first_half_edge[static_cast<std::size_t>(edge_ad)] = new_ad;
+    first_half_edge[static_cast<std::size_t>(edge_db)] = new_db;
+    first_half_edge[static_cast<std::size_t>(edge_bc)] = new_bc;
+    first_half_edge[edge] = new_dc;
+    --degree[a];
+    --degree[b];
+    ++degree[c];
+    ++degree[d];
+  }
+  return flipped;
+}
+
+Mesh make_subdivided_cube(int n) {
+  // 6 n^2 + 2 vertices must fit 32-bit indices; 10000 (600M vertices) is far beyond any practical use.
+  if (n < 1 || n > 10000) throw std::invalid_argument("make_subdivided_cube: n must be in [1, 10000]");
+  const auto grid_size = static_cast<std::int64_t>(n) + 1;
+  // Dense lookup from grid coordinates (i, j, k) in [0, n]^3 would be (n+1)^3 entries; the surface has
+  // only ~6 n^2 points, so key them by a face-independent code in a sorted table instead.
+  const auto point_code = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return (i * grid_size + j) * grid_size + k; };
+
+  std::vector<std::int64_t> surface_codes;
+  surface_codes.reserve(6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n) + 2);
+  for (std::int64_t i = 0; i <= n; ++i)
+    for (std::int64_t j = 0; j <= n; ++j)
+      for (std::int64_t k = 0; k <= n; ++k) {
+        const bool on_surface = i == 0 || i == n || j == 0 || j == n || k == 0 || k == n;
+        if (on_surface) surface_codes.push_back(point_code(i, j, k));
+        // Skip the cube's interior of this (i, j) column in one step.
+        if (!on_surface && k == 1 && n > 1) k = n - 1;
+      }
+  // Codes were generated in increasing order, so the table is already sorted.
+  Mesh mesh;
+  mesh.positions.reserve(surface_codes.size());
+  for (const auto code : surface_codes) {
+    const std::int64_t k = code % grid_size, j = (code / grid_size) % grid_size, i = code / (grid_size * grid_size);
+    const auto coordinate = [&](std::int64_t index) { return -1.0 + 2.0 * static_cast<double>(index) / n; };
+    mesh.positions.push_back({coordinate(i), coordinate(j), coordinate(k)});
+  }
+  const auto vertex_at = [&](const std::array<std::int64_t, 3>& grid_point) {
+    const auto code = point_code(grid_point[0], grid_point[1], grid_point[2]);
+    return static_cast<std::int32_t>(std::lower_bound(surface_codes.begin(), surface_codes.end(), code) - surface_codes.begin());
+  };
+
+  mesh.triangles.reserve(12 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+  for (int normal_axis = 0; normal_axis < 3; ++normal_axis) {
+    for (const int side : {-1, 1}) {
+      // (u, v, normal) right-handed on the + side and swapped on the - side, so (u, v) order is
+      // counter-clockwise seen from outside on every face.
+      const int u_axis = side > 0 ? (normal_axis + 1) % 3 : (normal_axis + 2) % 3;
+      const int v_axis = side > 0 ? (normal_axis + 2) % 3 : (normal_axis + 1) % 3;
+      const auto face_vertex = [&](std::int64_t u, std::int64_t v) {
+        std::array<std::int64_t, 3> grid_point{};
+        grid_point[normal_axis] = side > 0 ? n : 0;
+        grid_point[u_axis] = u;
+        grid_point[v_axis] = v;
+        return vertex_at(grid_point);
+      };
+      for (std::int64_t u = 0; u < n; ++u)
+        for (std::int64_t v = 0; v < n; ++v) {
+          const auto p00 = face_vertex(u, v), p10 = face_vertex(u + 1, v);
+          const auto p11 = face_vertex(u + 1, v + 1), p01 = face_vertex(u, v + 1);
+          mesh.triangles.push_back({p00, p10, p11});
+          mesh.triangles.push_back({p00, p11, p01});
+        }
+    }
+  }
+  return mesh;
+}
+
+// Attributes are not carried over: the result has only positions and triangles, since there is no one
+// right way to interpolate integer labels onto midpoints.
+Mesh subdivide_midpoint(const Mesh& mesh, int levels) {
+  if (levels < 0) throw std::invalid_argument("subdivide_midpoint: levels must be >= 0");
+  require_valid_indices(mesh, "subdivide_midpoint");
+  Mesh result;
+  result.positions = mesh.positions;
+  result.triangles = mesh.triangles;
+  for (int level = 0; level < levels; ++level) subdivide_once(result.positions, result.triangles, false);
+  return result;
+}
+
+}  // namespace spheremap

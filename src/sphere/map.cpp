@@ -1,0 +1,441 @@
+#include "spheremap/sphere/map.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <unordered_set>
+
+#include <fmt/format.h>
+
+#include "harmonic.hpp"
+#include "spheremap/error.hpp"
+#include "spheremap/geometry/predicates.hpp"
+#include "spheremap/geometry/vec.hpp"
+#include "untangle.hpp"
+
+namespace spheremap {
+
+const char* to_string(Weights weights) {
+  switch (weights) {
+    case Weights::kUniform: return "uniform";
+    case Weights::kCotangent: return "cotan";
+    case Weights::kMeanValue: return "mean-value";
+  }
+  return "?";
+}
+const char* to_string(Solver solver) { return solver == Solver::kDirect ? "direct" : "gauss-seidel"; }
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kPi = std::numbers::pi;
+constexpr double kRingZ = 1.0;  // Z: the circumpolar rings sit at z = ±Z
+
+class StageTimer {
+ public:
+  explicit StageTimer(std::vector<StageTime>& out) : out_(out), start_(Clock::now()) {}
+  void lap(const std::string& stage) {
+    const auto now = Clock::now();
+    out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
+    start_ = now;
+  }
+
+ private:
+  std::vector<StageTime>& out_;
+  Clock::time_point start_;
+};
+
+// The mesh the planar problem is solved on: the input plus one midpoint per split dividing edge.
+struct WorkingMesh {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  VertexRings rings;
+};
+
+// Splits every edge joining two non-consecutive vertices of the ring around `pole` (a separating
+// triangle through the pole): such an edge would pin everything on its pole side to z = ±Z.
+void split_dividing_edges(WorkingMesh& work, std::int32_t pole, char tag, std::vector<SplitEdge>& splits) {
+  const auto ring_span = work.rings.ring(pole);
+  const std::vector<std::int32_t> ring(ring_span.begin(), ring_span.end());
+  const auto size = static_cast<std::int64_t>(ring.size());
+  std::vector<std::int64_t> position(work.positions.size(), -1);
+  for (std::int64_t k = 0; k < size; ++k) position[ring[k]] = k;
+  std::vector<std::pair<std::int32_t, std::int32_t>> chords;
+  for (auto a : ring) {
+    for (auto b : work.rings.ring(a)) {
+      if (b >= static_cast<std::int32_t>(position.size()) || position[b] < 0 || b < a) continue;
+      const auto gap = std::abs(position[a] - position[b]);
+      if (gap != 1 && gap != size - 1) chords.emplace_back(a, b);
+    }
+  }
+  if (chords.empty()) return;
+  std::sort(chords.begin(), chords.end());
+  std::unordered_set<std::int32_t> on_ring(ring.begin(), ring.end());
+  std::vector<std::int32_t> candidates;  // triangles touching the ring: the only ones a chord can be in
+  for (std::int32_t t = 0; t < static_cast<std::int32_t>(work.triangles.size()); ++t) {
+    const auto& tri = work.triangles[t];
+    if (on_ring.count(tri[0]) || on_ring.count(tri[1]) || on_ring.count(tri[2])) candidates.push_back(t);
+  }
+  for (const auto& [a, b] : chords) {
+    const auto midpoint = static_cast<std::int32_t>(work.positions.size());
+    work.positions.push_back(0.5 * (work.positions[a] + work.positions[b]));
+    int replaced = 0;
+    for (std::size_t c = 0, count = candidates.size(); c < count; ++c) {
+      auto& tri = work.triangles[candidates[c]];
+      for (int s = 0; s < 3; ++s) {
+        const auto u = tri[s], v = tri[(s + 1) % 3], opposite = tri[(s + 2) % 3];
+        if (!((u == a && v == b) || (u == b && v == a))) continue;
+        tri = {u, midpoint, opposite};
+        work.triangles.push_back({midpoint, v, opposite});
+        candidates.push_back(static_cast<std::int32_t>(work.triangles.size()) - 1);
+        ++replaced;
+        break;
+      }
+    }
+    if (replaced != 2) throw std::logic_error("split_dividing_edges: a dividing edge is not shared by two triangles");
+    splits.push_back({a, b, tag});
+  }
+}
+
+struct PlanarCoordinates {
+  std::vector<double> z, phi;
+  std::vector<std::int32_t> meridian;
+  detail::SolveStats z_stats, phi_stats;
+};
+
+// Side of neighbour `i` of meridian vertex `b` whose meridian neighbours are `up` (towards N) and `down`:
+// counter-clockwise from `up` one meets the west side first (north is up, seen from outside).
+bool is_west_of(const VertexRings& rings, std::int32_t b, std::int32_t up, std::int32_t down, std::int32_t i) {
+  const auto ring = rings.ring(b);
+  const auto size = ring.size();
+  std::size_t start = 0;
+  while (start < size && ring[start] != up) ++start;
+  for (std::size_t k = 1; k < size; ++k) {
+    const auto w = ring[(start + k) % size];
+    if (w == i) return true;
+    if (w == down) return false;
+  }
+  return false;
+}
+
+PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std::int32_t south,
+                               const detail::EdgeWeights& weights, const MapOptions& options) {
+  const auto& rings = work.rings;
+  const auto n = rings.vertex_count();
+  const auto north_ring = rings.ring(north);
+  const auto south_ring = rings.ring(south);
+  std::vector<char> on_north_ring(n, 0), on_south_ring(n, 0);
+  for (auto v : north_ring) on_north_ring[v] = 1;
+  for (auto v : south_ring) on_south_ring[v] = 1;
+
+  PlanarCoordinates planar;
+  // z: harmonic between the rings.
+  detail::HarmonicProblem z_problem{&rings, &weights, std::vector<char>(n, 0), {}};
+  planar.z.assign(n, 0.0);
+  z_problem.fixed[north] = z_problem.fixed[south] = 1;
+  planar.z[north] = kRingZ;
+  planar.z[south] = -kRingZ;
+  for (auto v : north_ring) z_problem.fixed[v] = 1, planar.z[v] = kRingZ;
+  for (auto v : south_ring) z_problem.fixed[v] = 1, planar.z[v] = -kRingZ;
+  planar.z_stats = detail::solve_harmonic(z_problem, planar.z, options.solver, options.gauss_seidel_tolerance,
+                                          options.gauss_seidel_max_sweeps);
+
+  // Boundary meridian: steepest descent in the strict total order (z, index), so that ties cannot stall
+  // or loop and no edge can join two non-consecutive meridian vertices.
+  auto lower = [&](std::int32_t a, std::int32_t b) {
+    return planar.z[a] != planar.z[b] ? planar.z[a] < planar.z[b] : a < b;
+  };
+  auto lowest_neighbour = [&](std::int32_t v) {
+    std::int32_t best = -1;
+    for (auto w : rings.ring(v)) {
+      if (w == north || w == south || on_north_ring[w]) continue;
+      if (best < 0 || lower(w, best)) best = w;
+    }
+    return best;
+  };
+  std::vector<std::int32_t> starts(north_ring.begin(), north_ring.end());
+  // Start where the descent is steepest; the rest are fallbacks should a descent stall numerically.
+  std::sort(starts.begin(), starts.end(), [&](std::int32_t a, std::int32_t b) {
+    const auto la = lowest_neighbour(a), lb = lowest_neighbour(b);
+    if (la < 0 || lb < 0) return la >= 0 && lb < 0;
+    return la != lb ? lower(la, lb) : a < b;
+  });
+  for (auto start : starts) {
+    std::vector<std::int32_t> path{start};
+    auto current = lowest_neighbour(start);
+    bool stalled = current < 0;
+    while (!stalled) {
+      path.push_back(current);
+      if (on_south_ring[current]) break;
+      const auto next = lowest_neighbour(current);
+      if (next < 0 || !lower(next, current)) stalled = true;
+      else current = next;
+    }
+    if (!stalled) {
+      planar.meridian = std::move(path);
+      break;
+    }
+  }
+  if (planar.meridian.empty())
+    throw std::runtime_error("no boundary meridian: steepest descent stalled from every northern ring vertex");
+
+  // φ: rings uniformly spaced, meridian at 0 (seen from the east) and 2π (from the west).
+  detail::HarmonicProblem phi_problem{&rings, &weights, std::vector<char>(n, 0),
+                                      std::vector<double>(rings.neighbors.size(), std::nan(""))};
+  planar.phi.assign(n, 0.0);
+  phi_problem.fixed[north] = phi_problem.fixed[south] = 1;
+  const auto& meridian = planar.meridian;
+  {
+    const auto size = static_cast<std::int64_t>(north_ring.size());
+    std::int64_t first = 0;
+    while (north_ring[first] != meridian.front()) ++first;
+    for (std::int64_t k = 0; k < size; ++k) {
+      const auto v = north_ring[(first + k) % size];
+      phi_problem.fixed[v] = 1;
+      planar.phi[v] = 2 * kPi * static_cast<double>(k) / static_cast<double>(size);
+    }
+  }
+  {
+    // Counter-clockwise around S seen from outside is clockwise seen from +z: φ decreases.
+    const auto size = static_cast<std::int64_t>(south_ring.size());
+    std::int64_t first = 0;
+    while (south_ring[first] != meridian.back()) ++first;
+    for (std::int64_t k = 0; k < size; ++k) {
+      const auto v = south_ring[(first + k) % size];
+      phi_problem.fixed[v] = 1;
+      planar.phi[v] = k == 0 ? 0.0 : 2 * kPi * static_cast<double>(size - k) / static_cast<double>(size);
+    }
+  }
+  for (std::size_t m = 0; m < meridian.size(); ++m) {
+    const auto b = meridian[m];
+    phi_problem.fixed[b] = 1;
+    planar.phi[b] = 0;
+  }
+  for (std::size_t m = 0; m < meridian.size(); ++m) {
+    const auto b = meridian[m];
+    const auto up = m == 0 ? north : meridian[m - 1];
+    const auto down = m + 1 == meridian.size() ? south : meridian[m + 1];
+    for (auto i : rings.ring(b)) {
+      if (phi_problem.fixed[i]) continue;
+      const auto ring_i = rings.ring(i);
+      for (std::size_t k = 0; k < ring_i.size(); ++k) {
+        if (ring_i[k] != b) continue;
+        phi_problem.slot_value[rings.offsets[i] + static_cast<std::int64_t>(k)] =
+            is_west_of(rings, b, up, down, i) ? 2 * kPi : 0.0;
+      }
+    }
+  }
+  planar.phi_stats = detail::solve_harmonic(phi_problem, planar.phi, options.solver, options.gauss_seidel_tolerance,
+                                            options.gauss_seidel_max_sweeps);
+  return planar;
+}
+
+Vec3 unit_from_angles(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+// The sphere points of the first `count` working vertices (the input's), by the Mercator scaling.
+std::vector<Vec3> to_sphere(const PlanarCoordinates& planar, std::int32_t north, std::int32_t south, double c,
+                            std::int32_t count) {
+  std::vector<Vec3> sphere(count);
+  for (std::int32_t v = 0; v < count; ++v) {
+    const double theta = 2 * std::atan(std::exp(-planar.z[v] / c));
+    sphere[v] = unit_from_angles(theta, planar.phi[v]);
+  }
+  sphere[north] = {0, 0, 1};
+  sphere[south] = {0, 0, -1};
+  return sphere;
+}
+
+// Per-vertex normalized area ratio of the map on the working mesh (used to re-weight against collapse).
+std::vector<double> vertex_area_ratios(const WorkingMesh& work, const std::vector<Vec3>& sphere_all) {
+  const auto n = static_cast<std::int64_t>(work.positions.size());
+  std::vector<double> sphere_area(n, 0), surface_area(n, 0);
+  double total_surface = 0;
+  for (const auto& t : work.triangles) {
+    const double a = triangle_area(work.positions[t[0]], work.positions[t[1]], work.positions[t[2]]);
+    const double s = std::abs(signed_solid_angle(sphere_all[t[0]], sphere_all[t[1]], sphere_all[t[2]]));
+    total_surface += a;
+    for (auto v : t) surface_area[v] += a, sphere_area[v] += s;
+  }
+  std::vector<double> ratio(n, 1.0);
+  for (std::int64_t v = 0; v < n; ++v) {
+    if (surface_area[v] > 0) ratio[v] = (sphere_area[v] / (4 * kPi)) / (surface_area[v] / total_surface);
+  }
+  return ratio;
+}
+
+std::vector<Vec3> all_sphere_points(const PlanarCoordinates& planar, std::int32_t north, std::int32_t south,
+                                    double c) {
+  return to_sphere(planar, north, south, c, static_cast<std::int32_t>(planar.z.size()));
+}
+
+// Meshes too small for poles and disjoint rings (graph distance N–S below 3, e.g. a tetrahedron):
+// a Tutte embedding with one triangle as the outer face, lifted by inverse stereographic projection.
+std::vector<Vec3> tutte_stereographic(const Mesh& mesh, const VertexRings& rings, std::int32_t north,
+                                      const MapOptions& options) {
+  const auto n = static_cast<std::int32_t>(mesh.positions.size());
+  Triangle outer{};
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == north || t[1] == north || t[2] == north) {
+      outer = t;
+      break;
+    }
+  }
+  const detail::EdgeWeights uniform = detail::compute_weights(rings, mesh.positions, Weights::kUniform);
+  detail::HarmonicProblem problem{&rings, &uniform, std::vector<char>(n, 0), {}};
+  std::vector<double> x(n, 0), y(n, 0);
+  constexpr double kOuterRadius = 3.0;  // outside the unit circle: the outer face becomes a cap around +z
+  for (int k = 0; k < 3; ++k) {
+    problem.fixed[outer[k]] = 1;
+    x[outer[k]] = kOuterRadius * std::cos(kPi / 2 + 2 * kPi * k / 3);
+    y[outer[k]] = kOuterRadius * std::sin(kPi / 2 + 2 * kPi * k / 3);
+  }
+  detail::solve_harmonic(problem, x, options.solver, options.gauss_seidel_tolerance, options.gauss_seidel_max_sweeps);
+  detail::solve_harmonic(problem, y, options.solver, options.gauss_seidel_tolerance, options.gauss_seidel_max_sweeps);
+  std::vector<Vec3> sphere(n);
+  for (std::int32_t v = 0; v < n; ++v) {
+    const double r2 = x[v] * x[v] + y[v] * y[v];
+    sphere[v] = {2 * x[v] / (r2 + 1), 2 * y[v] / (r2 + 1), (r2 - 1) / (r2 + 1)};
+  }
+  // Stereographic projection may reverse orientation; decide on a triangle that is not the outer one.
+  for (const auto& t : mesh.triangles) {
+    if (t == outer) continue;
+    if (orientation_sign(sphere[t[0]], sphere[t[1]], sphere[t[2]]) < 0)
+      for (auto& p : sphere) p[0] = -p[0];
+    break;
+  }
+  return sphere;
+}
+
+}  // namespace
+
+SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
+  SphereMap result;
+  StageTimer timer(result.timings);
+  const auto n = static_cast<std::int32_t>(mesh.positions.size());
+  if (n < 4) throw MeshRefused("the mesh has fewer than 4 vertices; a closed triangle mesh needs at least 4");
+
+  WorkingMesh work{mesh.positions, mesh.triangles, build_vertex_rings(n, mesh.triangles)};
+  if (options.poles) {
+    const auto [a, b] = *options.poles;
+    if (a < 0 || b < 0 || a >= n || b >= n || a == b)
+      throw std::invalid_argument(fmt::format("poles {},{} must be two different vertices in [0, {})", a, b, n));
+    result.north = a;
+    result.south = b;
+    result.poles_from_options = true;
+  } else {
+    std::tie(result.north, result.south) = farthest_pair(mesh.positions);
+  }
+  const auto north = result.north, south = result.south;
+  result.pole_graph_distance = graph_distances(work.rings, north)[south];
+  timer.lap("poles");
+
+  std::vector<Vec3> sphere;
+  PlanarCoordinates planar;
+  detail::EdgeWeights weights;
+  if (result.pole_graph_distance < 3) {
+    result.method = "tutte-stereographic";
+    sphere = tutte_stereographic(mesh, work.rings, north, options);
+    result.solver_used = options.solver == Solver::kDirect ? "direct" : "gauss-seidel";
+    timer.lap("solve");
+  } else {
+    result.method = "poles-and-rings";
+    split_dividing_edges(work, north, 'N', result.split_edges);
+    split_dividing_edges(work, south, 'S', result.split_edges);
+    if (!result.split_edges.empty())
+      work.rings = build_vertex_rings(static_cast<std::int32_t>(work.positions.size()), work.triangles);
+    result.north_ring_size = work.rings.degree(north);
+    result.south_ring_size = work.rings.degree(south);
+    result.theta0 = kPi / result.pole_graph_distance;
+    result.ring_z = kRingZ;
+    result.mercator_c = kRingZ / std::log((1 + std::cos(result.theta0)) / std::sin(result.theta0));
+    weights = detail::compute_weights(work.rings, work.positions, options.weights);
+    result.weight_fallback_rows = weights.fallback_rows;
+    timer.lap("rings");
+    planar = solve_planar(work, north, south, weights, options);
+    result.solver_used = planar.z_stats.solver;
+    result.gauss_seidel_sweeps = planar.z_stats.sweeps + planar.phi_stats.sweeps;
+    result.gauss_seidel_converged = planar.z_stats.converged && planar.phi_stats.converged;
+    sphere = to_sphere(planar, north, south, result.mercator_c, n);
+    timer.lap("solve");
+  }
+  result.plain_certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  timer.lap("certify-plain");
+
+  if (options.repair && result.method == "poles-and-rings" && result.plain_certificate.collapsed > 0) {
+    // Collapse: harmonic z and φ decay exponentially along limbs that lead to neither pole. Re-weighting
+    // each edge by the area ratio at its far end (Yoshizawa, Belyaev & Seidel 2004, in (z, φ)) pulls
+    // every vertex towards its less collapsed neighbours, which spreads the limb; the weights stay
+    // positive, so the planar map stays one-to-one (Floater 2003).
+    auto best_sphere = sphere;
+    auto best_certificate = result.plain_certificate;
+    int rounds_without_progress = 0;
+    for (int round = 1; round <= options.max_reweighting_rounds; ++round) {
+      const auto ratio = vertex_area_ratios(work, all_sphere_points(planar, north, south, result.mercator_c));
+      for (std::int32_t v = 0; v < work.rings.vertex_count(); ++v) {
+        const auto ring = work.rings.ring(v);
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+          const double factor = std::sqrt(std::clamp(ratio[ring[k]], 1e-12, 1e12));
+          auto& w = weights.values[work.rings.offsets[v] + static_cast<std::int64_t>(k)];
+          w = std::clamp(w * factor, 1e-150, 1e150);
+        }
+      }
+      weights.symmetric = false;
+      planar = solve_planar(work, north, south, weights, options);
+      sphere = to_sphere(planar, north, south, result.mercator_c, n);
+      const auto certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+      result.reweighting_rounds = round;
+      const bool better = certificate.collapsed + certificate.folded < best_certificate.collapsed + best_certificate.folded ||
+                          (certificate.collapsed + certificate.folded == best_certificate.collapsed + best_certificate.folded &&
+                           certificate.min_area_ratio > best_certificate.min_area_ratio);
+      if (better) {
+        best_sphere = sphere;
+        best_certificate = certificate;
+        rounds_without_progress = 0;
+      } else if (++rounds_without_progress >= 3) {
+        break;
+      }
+      if (certificate.collapsed == 0) break;
+    }
+    sphere = std::move(best_sphere);
+    result.solver_used = planar.z_stats.solver;
+    timer.lap("reweight");
+  }
+
+  // Superposition first, so that the certificate is of the very numbers that are written.
+  result.superposition = superpose_sphere_on_surface(mesh.positions, sphere);
+  for (auto& p : sphere) p = rotate(result.superposition.rotation, p);
+  timer.lap("superpose");
+
+  auto certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  if (options.repair && !certificate.certified()) {
+    result.untangling_moves =
+        detail::untangle_on_sphere(mesh, work.rings.vertex_count() == n ? work.rings : build_vertex_rings(n, mesh.triangles),
+                                   sphere, options.collapse_floor, options.max_untangling_sweeps);
+    timer.lap("untangle");
+    certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  }
+  result.certificate = std::move(certificate);
+  timer.lap("certify");
+
+  result.theta.resize(n);
+  result.phi.resize(n);
+  const auto& r = result.superposition.rotation;
+  const std::array<double, 9> inverse{r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]};
+  for (std::int32_t v = 0; v < n; ++v) {
+    const Vec3 u = rotate(inverse, sphere[v]);
+    result.theta[v] = std::acos(std::clamp(u[2], -1.0, 1.0));
+    double phi = std::atan2(u[1], u[0]);
+    if (phi < 0) phi += 2 * kPi;
+    if (phi >= 2 * kPi) phi = 0;  // -0 and tiny negatives round up to 2π
+    result.phi[v] = phi;
+  }
+  if (result.method == "poles-and-rings") result.meridian = planar.meridian;
+  result.sphere = std::move(sphere);
+  return result;
+}
+
+}  // namespace spheremap

@@ -1,0 +1,195 @@
+#include "untangle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "spheremap/geometry/predicates.hpp"
+#include "spheremap/geometry/vec.hpp"
+#include "spheremap/sphere/certify.hpp"
+
+namespace spheremap::detail {
+
+std::vector<double> target_solid_angles(const Mesh& surface) {
+  std::vector<double> target(surface.triangles.size());
+  double total = 0;
+  for (std::size_t t = 0; t < target.size(); ++t) {
+    const auto& tri = surface.triangles[t];
+    target[t] = triangle_area(surface.positions[tri[0]], surface.positions[tri[1]], surface.positions[tri[2]]);
+    total += target[t];
+  }
+  for (auto& a : target) a = std::max(a / total * 4 * std::numbers::pi, 1e-300);
+  return target;
+}
+
+namespace {
+
+struct Star {
+  std::vector<std::int32_t> ring;       // neighbours, counter-clockwise
+  std::vector<std::int32_t> triangles;  // triangle k = (v, ring[k], ring[k+1])
+};
+
+// A convex polygon clipped by half-planes a·p + b >= 0 (Sutherland–Hodgman), in a gnomonic chart.
+using Point2 = std::array<double, 2>;
+std::vector<Point2> clip(const std::vector<Point2>& polygon, double ax, double ay, double b) {
+  std::vector<Point2> out;
+  const auto size = polygon.size();
+  for (std::size_t k = 0; k < size; ++k) {
+    const auto& p = polygon[k];
+    const auto& q = polygon[(k + 1) % size];
+    const double fp = ax * p[0] + ay * p[1] + b, fq = ax * q[0] + ay * q[1] + b;
+    if (fp >= 0) out.push_back(p);
+    if ((fp >= 0) != (fq >= 0)) {
+      const double s = fp / (fp - fq);
+      out.push_back({p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])});
+    }
+  }
+  return out;
+}
+
+class Untangler {
+ public:
+  Untangler(const Mesh& surface, const VertexRings& rings, std::vector<Vec3>& sphere, double floor)
+      : surface_(surface), rings_(rings), sphere_(sphere), floor_(floor), target_(target_solid_angles(surface)) {
+    // Triangle index of each (vertex, ring slot).
+    const auto n = rings.vertex_count();
+    star_triangle_.assign(rings.neighbors.size(), -1);
+    for (std::int32_t t = 0; t < static_cast<std::int32_t>(surface.triangles.size()); ++t) {
+      const auto& tri = surface.triangles[t];
+      for (int s = 0; s < 3; ++s) {
+        const auto v = tri[s], next = tri[(s + 1) % 3];
+        const auto ring = rings.ring(v);
+        for (std::size_t k = 0; k < ring.size(); ++k)
+          if (ring[k] == next) star_triangle_[rings.offsets[v] + static_cast<std::int64_t>(k)] = t;
+      }
+    }
+    (void)n;
+  }
+
+  // Smallest quality of the triangles around v if v were at p: quality = solid angle / target when
+  // positively oriented (exact predicate), -1 otherwise.
+  double star_quality(std::int32_t v, const Vec3& p) const {
+    const auto ring = rings_.ring(v);
+    double worst = INFINITY;
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const auto& a = sphere_[ring[k]];
+      const auto& b = sphere_[ring[(k + 1) % ring.size()]];
+      if (orientation_sign(p, a, b) <= 0) return -1;
+      const auto t = star_triangle_[rings_.offsets[v] + static_cast<std::int64_t>(k)];
+      worst = std::min(worst, signed_solid_angle(p, a, b) / target_[t]);
+    }
+    return worst;
+  }
+
+  bool triangle_is_bad(std::int32_t t) const {
+    const auto& tri = surface_.triangles[t];
+    const auto &a = sphere_[tri[0]], &b = sphere_[tri[1]], &c = sphere_[tri[2]];
+    if (orientation_sign(a, b, c) <= 0) return true;
+    return signed_solid_angle(a, b, c) / target_[t] < floor_;
+  }
+
+  // Moves v to the best point of its kernel in a gnomonic chart; true if the star got better.
+  bool move(std::int32_t v) {
+    const auto ring = rings_.ring(v);
+    const auto size = ring.size();
+    Vec3 centre{0, 0, 0};
+    for (auto w : ring) centre = centre + sphere_[w];
+    centre = normalized(centre);
+    if (norm(centre) == 0) return false;
+    for (auto w : ring)
+      if (dot(sphere_[w], centre) <= 1e-3) return false;  // the ring is not within a hemisphere chart
+    // Orthonormal frame (e1, e2, centre), right-handed so orientations are kept.
+    const Vec3 helper = std::abs(centre[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 e1 = normalized(cross(helper, centre));
+    const Vec3 e2 = cross(centre, e1);
+    std::vector<Point2> chart(size);
+    for (std::size_t k = 0; k < size; ++k) {
+      const auto& w = sphere_[ring[k]];
+      const double h = dot(w, centre);
+      chart[k] = {dot(w, e1) / h, dot(w, e2) / h};
+    }
+    // Half-plane for triangle k: orient2d(p, A, B) >= t * scale_k, i.e. linear in p.
+    std::vector<std::array<double, 3>> lines(size);  // ax, ay, b with orient2d = ax*px + ay*py + b
+    std::vector<double> scale(size);
+    for (std::size_t k = 0; k < size; ++k) {
+      const auto& A = chart[k];
+      const auto& B = chart[(k + 1) % size];
+      lines[k] = {A[1] - B[1], B[0] - A[0], A[0] * B[1] - A[1] * B[0]};
+      const auto t = star_triangle_[rings_.offsets[v] + static_cast<std::int64_t>(k)];
+      scale[k] = target_[t];
+    }
+    double extent = 0;
+    for (const auto& c : chart) extent = std::max({extent, std::abs(c[0]), std::abs(c[1])});
+    const std::vector<Point2> box{{-2 * extent, -2 * extent}, {2 * extent, -2 * extent}, {2 * extent, 2 * extent}, {-2 * extent, 2 * extent}};
+    auto region_for = [&](double t) {
+      auto polygon = box;
+      for (std::size_t k = 0; k < size && !polygon.empty(); ++k)
+        polygon = clip(polygon, lines[k][0], lines[k][1], lines[k][2] - t * scale[k]);
+      return polygon;
+    };
+    // Bisection on t: the largest t with a non-empty region is the max-min point.
+    if (region_for(0).size() < 3) return false;  // empty kernel: the neighbours must move first
+    double low = 0, high = 1;
+    while (region_for(high).size() >= 3 && high < 1e6) low = high, high *= 4;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const double middle = 0.5 * (low + high);
+      (region_for(middle).size() >= 3 ? low : high) = middle;
+    }
+    const auto region = region_for(0.5 * low);
+    if (region.size() < 3) return false;
+    Point2 mean{0, 0};
+    for (const auto& q : region) mean[0] += q[0] / static_cast<double>(region.size()), mean[1] += q[1] / static_cast<double>(region.size());
+    const Vec3 candidate = normalized(centre + mean[0] * e1 + mean[1] * e2);
+    if (star_quality(v, candidate) > star_quality(v, sphere_[v])) {
+      sphere_[v] = candidate;
+      return true;
+    }
+    return false;
+  }
+
+  std::int64_t run(int max_sweeps) {
+    std::int64_t moves = 0;
+    int neighbourhood = 0;  // 0: vertices of bad triangles; k: plus their k-ring
+    for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+      std::vector<char> active(sphere_.size(), 0);
+      bool any_bad = false;
+      for (std::int32_t t = 0; t < static_cast<std::int32_t>(surface_.triangles.size()); ++t) {
+        if (!triangle_is_bad(t)) continue;
+        any_bad = true;
+        for (auto v : surface_.triangles[t]) active[v] = 1;
+      }
+      if (!any_bad) break;
+      for (int grow = 0; grow < neighbourhood; ++grow) {
+        auto grown = active;
+        for (std::int32_t v = 0; v < static_cast<std::int32_t>(active.size()); ++v)
+          if (active[v])
+            for (auto w : rings_.ring(v)) grown[w] = 1;
+        active.swap(grown);
+      }
+      std::int64_t moved = 0;
+      for (std::int32_t v = 0; v < static_cast<std::int32_t>(active.size()); ++v)
+        if (active[v] && move(v)) ++moved;
+      moves += moved;
+      neighbourhood = moved == 0 ? std::min(neighbourhood + 1, 8) : 0;
+    }
+    return moves;
+  }
+
+ private:
+  const Mesh& surface_;
+  const VertexRings& rings_;
+  std::vector<Vec3>& sphere_;
+  double floor_;
+  std::vector<double> target_;
+  std::vector<std::int32_t> star_triangle_;
+};
+
+}  // namespace
+
+std::int64_t untangle_on_sphere(const Mesh& surface, const VertexRings& rings, std::vector<Vec3>& sphere,
+                                double collapse_floor, int max_sweeps) {
+  Untangler untangler(surface, rings, sphere, collapse_floor);
+  return untangler.run(max_sweeps);
+}
+
+}  // namespace spheremap::detail

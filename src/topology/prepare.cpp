@@ -1,0 +1,422 @@
+#include "spheremap/topology/prepare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "spheremap/error.hpp"
+#include "spheremap/geometry/vec.hpp"
+
+namespace spheremap {
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  std::int64_t find(std::int64_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  // The smaller root wins, so representatives do not depend on the order of unions.
+  void unite(std::int64_t a, std::int64_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (a < b) std::swap(a, b);
+    parent_[a] = b;
+  }
+
+ private:
+  std::vector<std::int64_t> parent_;
+};
+
+// representative[i] = smallest input index of the vertices welded with i.
+std::vector<std::int32_t> weld_representatives(const std::vector<Vec3>& positions, double tolerance) {
+  const auto n = static_cast<std::int32_t>(positions.size());
+  std::vector<std::int32_t> representative(n);
+  std::iota(representative.begin(), representative.end(), 0);
+  if (tolerance <= 0) {
+    std::vector<std::int32_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+      return positions[a] != positions[b] ? positions[a] < positions[b] : a < b;
+    });
+    for (std::int32_t k = 1; k < n; ++k) {
+      if (positions[order[k]] == positions[order[k - 1]]) representative[order[k]] = representative[order[k - 1]];
+    }
+    return representative;
+  }
+  // Grid hashing with cells of the tolerance: welded pairs lie in the same or adjacent cells.
+  auto cell_of = [&](const Vec3& p) {
+    return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(p[0] / tolerance)),
+                                       static_cast<std::int64_t>(std::floor(p[1] / tolerance)),
+                                       static_cast<std::int64_t>(std::floor(p[2] / tolerance))};
+  };
+  auto key_of = [](const std::array<std::int64_t, 3>& c) {
+    return static_cast<std::uint64_t>(c[0]) * 73856093ULL ^ static_cast<std::uint64_t>(c[1]) * 19349663ULL ^
+           static_cast<std::uint64_t>(c[2]) * 83492791ULL;
+  };
+  std::unordered_multimap<std::uint64_t, std::int32_t> grid;
+  grid.reserve(positions.size());
+  for (std::int32_t i = 0; i < n; ++i) grid.emplace(key_of(cell_of(positions[i])), i);
+  UnionFind clusters(n);
+  const double tolerance_squared = tolerance * tolerance;
+  for (std::int32_t i = 0; i < n; ++i) {
+    const auto c = cell_of(positions[i]);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto [begin, end] = grid.equal_range(key_of({c[0] + dx, c[1] + dy, c[2] + dz}));
+          for (auto it = begin; it != end; ++it) {
+            if (it->second > i && squared_distance(positions[i], positions[it->second]) <= tolerance_squared)
+              clusters.unite(i, it->second);
+          }
+        }
+  }
+  for (std::int32_t i = 0; i < n; ++i) representative[i] = static_cast<std::int32_t>(clusters.find(i));
+  return representative;
+}
+
+struct EdgeIncidence {
+  std::int32_t low, high;  // vertex indices, low < high
+  std::int32_t face;
+  bool forward;  // the face runs low -> high
+};
+
+// All half-edges grouped by undirected edge (sorted by (low, high, face)), using a counting sort on the
+// low vertex so that millions of triangles are grouped in linear time.
+std::vector<EdgeIncidence> group_edges(std::int32_t vertex_count, const std::vector<Triangle>& triangles) {
+  std::vector<std::int64_t> start(static_cast<std::size_t>(vertex_count) + 1, 0);
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<EdgeIncidence> edges(triangles.size() * 3);
+  std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
+  for (std::int32_t f = 0; f < static_cast<std::int32_t>(triangles.size()); ++f) {
+    const auto& t = triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = t[k], b = t[(k + 1) % 3];
+      edges[fill[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), f, a < b};
+    }
+  }
+  for (std::int32_t v = 0; v < vertex_count; ++v) {
+    std::sort(edges.begin() + start[v], edges.begin() + start[v + 1], [](const auto& x, const auto& y) {
+      return x.high != y.high ? x.high < y.high : x.face < y.face;
+    });
+  }
+  return edges;
+}
+
+std::string plural(std::int64_t n, const char* singular, const char* many) {
+  return fmt::format("{} {}", n, n == 1 ? singular : many);
+}
+
+struct Triangulated {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<std::int32_t> original_vertex;
+};
+
+PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
+                               const std::vector<std::vector<std::int32_t>>& faces,
+                               const PrepareOptions& options, const Mesh* attributes_from) {
+  const std::string& name = options.source_name;
+  PrepareReport report;
+  report.input_vertices = static_cast<std::int64_t>(input_positions.size());
+  report.input_faces = static_cast<std::int64_t>(faces.size());
+  if (faces.empty()) throw InputError(fmt::format("{}: the file has no faces; spheremap needs a closed triangle mesh", name));
+  const auto input_count = static_cast<std::int32_t>(input_positions.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (auto index : faces[f]) {
+      if (index < 0 || index >= input_count)
+        throw InputError(fmt::format("{}: face {} refers to vertex {}, but there are only {} vertices; the file is corrupt",
+                                     name, f, index, input_count));
+    }
+  }
+  for (std::int32_t i = 0; i < input_count; ++i) {
+    const auto& p = input_positions[i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InputError(fmt::format("{}: vertex {} has a non-finite coordinate; fix or remove it", name, i));
+  }
+
+  const auto representative = weld_representatives(input_positions, options.weld_tolerance);
+  for (std::int32_t i = 0; i < input_count; ++i) report.vertices_welded += representative[i] != i;
+
+  // Fan triangulation, then drop degenerate and duplicate triangles.
+  std::vector<Triangle> triangles;
+  triangles.reserve(faces.size() * 2);
+  for (const auto& face : faces) {
+    if (face.size() > 3) ++report.polygons_triangulated;
+    if (face.size() < 3) {
+      ++report.degenerate_faces_dropped;
+      continue;
+    }
+    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+      const Triangle t{representative[face[0]], representative[face[k]], representative[face[k + 1]]};
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+        ++report.degenerate_faces_dropped;
+        continue;
+      }
+      triangles.push_back(t);
+    }
+  }
+  {
+    std::vector<std::pair<Triangle, std::int32_t>> sorted(triangles.size());
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      Triangle key = triangles[f];
+      std::sort(key.begin(), key.end());
+      sorted[f] = {key, static_cast<std::int32_t>(f)};
+    }
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<char> keep(triangles.size(), 1);
+    for (std::size_t k = 1; k < sorted.size(); ++k) {
+      if (sorted[k].first == sorted[k - 1].first) {
+        keep[sorted[k].second] = 0;
+        ++report.duplicate_faces_dropped;
+      }
+    }
+    std::size_t out = 0;
+    for (std::size_t f = 0; f < triangles.size(); ++f)
+      if (keep[f]) triangles[out++] = triangles[f];
+    triangles.resize(out);
+  }
+  if (triangles.empty())
+    throw MeshRefused(fmt::format("{}: every face is degenerate (repeated corners); nothing to map", name));
+
+  // Compact: keep referenced vertices only, in input order.
+  std::vector<std::int32_t> new_index(input_count, -1);
+  for (const auto& t : triangles)
+    for (auto v : t) new_index[v] = 0;
+  std::vector<std::int32_t> original_vertex;
+  for (std::int32_t i = 0; i < input_count; ++i) {
+    if (new_index[i] == 0) {
+      new_index[i] = static_cast<std::int32_t>(original_vertex.size());
+      original_vertex.push_back(i);
+    } else if (representative[i] == i) {
+      ++report.unreferenced_vertices;
+    }
+  }
+  for (auto& t : triangles)
+    for (auto& v : t) v = new_index[v];
+  const auto vertex_count = static_cast<std::int32_t>(original_vertex.size());
+
+  // Edge checks.
+  const auto edges = group_edges(vertex_count, triangles);
+  std::int64_t boundary_edges = 0, nonmanifold_edges = 0;
+  for (std::size_t k = 0; k < edges.size();) {
+    std::size_t j = k;
+    while (j < edges.size() && edges[j].low == edges[k].low && edges[j].high == edges[k].high) ++j;
+    if (j - k == 1) ++boundary_edges;
+    if (j - k > 2) ++nonmanifold_edges;
+    k = j;
+  }
+  if (boundary_edges > 0 || nonmanifold_edges > 0) {
+    std::vector<std::string> problems;
+    if (boundary_edges > 0)
+      problems.push_back(plural(boundary_edges, "boundary edge (the surface is open: it has holes)",
+                                "boundary edges (the surface is open: it has holes)"));
+    if (nonmanifold_edges > 0)
+      problems.push_back(plural(nonmanifold_edges, "non-manifold edge (shared by more than two triangles)",
+                                "non-manifold edges (shared by more than two triangles)"));
+    throw MeshRefused(fmt::format(
+        "{}: not a closed 2-manifold: {}. spheremap maps closed surfaces only: close the holes and remove "
+        "the extra sheets (e.g. MeshLab 'Close Holes', 'Repair non Manifold Edges'){}",
+        name, fmt::join(problems, "; "),
+        options.weld_tolerance == 0 ? ", or weld nearby vertices with --weld-tolerance" : ""));
+  }
+
+  // Pinched vertices: the corners at a vertex, joined across shared edges, must form a single fan.
+  UnionFind corners(triangles.size() * 3);
+  auto corner_of = [&](std::int32_t face, std::int32_t vertex) {
+    const auto& t = triangles[face];
+    return static_cast<std::int64_t>(face) * 3 + (t[0] == vertex ? 0 : t[1] == vertex ? 1 : 2);
+  };
+  UnionFind face_components(triangles.size());
+  for (std::size_t k = 0; k < edges.size(); k += 2) {
+    const auto& e = edges[k];
+    const auto& g = edges[k + 1];
+    corners.unite(corner_of(e.face, e.low), corner_of(g.face, e.low));
+    corners.unite(corner_of(e.face, e.high), corner_of(g.face, e.high));
+    face_components.unite(e.face, g.face);
+  }
+  {
+    std::vector<std::int64_t> first_fan(vertex_count, -1);
+    std::vector<char> pinched(vertex_count, 0);
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const auto v = triangles[f][k];
+        const auto root = corners.find(static_cast<std::int64_t>(f) * 3 + k);
+        if (first_fan[v] < 0) first_fan[v] = root;
+        else if (first_fan[v] != root) pinched[v] = 1;
+      }
+    }
+    const auto pinched_count = std::count(pinched.begin(), pinched.end(), 1);
+    if (pinched_count > 0) {
+      const auto first = std::find(pinched.begin(), pinched.end(), 1) - pinched.begin();
+      throw MeshRefused(fmt::format(
+          "{}: not a 2-manifold: {} where separate sheets touch at a single point (first: input vertex {}). "
+          "Split the vertex into one copy per sheet, or remove the extra sheet, and try again",
+          name, plural(pinched_count, "pinched (non-manifold) vertex", "pinched (non-manifold) vertices"),
+          original_vertex[first]));
+    }
+  }
+
+  // Components, numbered in the order of their first triangle.
+  std::vector<std::int32_t> component_of_face(triangles.size());
+  std::vector<std::int64_t> component_sizes;
+  {
+    std::unordered_map<std::int64_t, std::int32_t> number_of_root;
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      const auto root = face_components.find(static_cast<std::int64_t>(f));
+      auto [it, inserted] = number_of_root.emplace(root, static_cast<std::int32_t>(component_sizes.size()));
+      if (inserted) component_sizes.push_back(0);
+      component_of_face[f] = it->second;
+      ++component_sizes[it->second];
+    }
+  }
+  report.components = static_cast<std::int64_t>(component_sizes.size());
+  std::int32_t kept = 0;
+  if (component_sizes.size() > 1) {
+    if (options.component == kComponentRefuse) {
+      std::vector<std::string> sizes;
+      for (std::size_t c = 0; c < component_sizes.size() && c < 8; ++c)
+        sizes.push_back(fmt::format("#{}: {} triangles", c, component_sizes[c]));
+      if (component_sizes.size() > 8) sizes.push_back("...");
+      throw MeshRefused(fmt::format(
+          "{}: the mesh has {} separate connected components ({}); a sphere map needs one. "
+          "Choose one with --component largest or --component N",
+          name, component_sizes.size(), fmt::join(sizes, ", ")));
+    }
+    if (options.component == kComponentLargest) {
+      kept = static_cast<std::int32_t>(std::max_element(component_sizes.begin(), component_sizes.end()) -
+                                       component_sizes.begin());
+    } else if (options.component >= 0 && options.component < static_cast<int>(component_sizes.size())) {
+      kept = options.component;
+    } else {
+      throw MeshRefused(fmt::format("{}: --component {} does not exist: the mesh has components 0 to {}", name,
+                                    options.component, component_sizes.size() - 1));
+    }
+  } else if (options.component >= 1) {
+    throw MeshRefused(fmt::format("{}: --component {} does not exist: the mesh has a single component (0)", name,
+                                  options.component));
+  }
+  report.component_kept = kept;
+
+  // Consistent orientation by breadth-first search over faces of the kept component.
+  std::vector<std::int32_t> face_ids;
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    if (component_of_face[f] == kept) face_ids.push_back(static_cast<std::int32_t>(f));
+  {
+    // Neighbour across each edge: the other incidence of the same undirected edge.
+    std::vector<std::array<std::int32_t, 3>> across(triangles.size());
+    std::vector<std::array<char, 3>> same_direction(triangles.size());
+    for (std::size_t k = 0; k < edges.size(); k += 2) {
+      const auto& e = edges[k];
+      const auto& g = edges[k + 1];
+      auto slot = [&](const EdgeIncidence& x) {
+        const auto& t = triangles[x.face];
+        for (int s = 0; s < 3; ++s)
+          if (std::min(t[s], t[(s + 1) % 3]) == x.low && std::max(t[s], t[(s + 1) % 3]) == x.high) return s;
+        return 0;
+      };
+      const int se = slot(e), sg = slot(g);
+      across[e.face][se] = g.face;
+      across[g.face][sg] = e.face;
+      same_direction[e.face][se] = same_direction[g.face][sg] = (e.forward == g.forward);
+    }
+    std::vector<signed char> flip(triangles.size(), -1);
+    std::vector<std::int32_t> queue;
+    queue.reserve(face_ids.size());
+    flip[face_ids.front()] = 0;
+    queue.push_back(face_ids.front());
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const auto f = queue[head];
+      for (int s = 0; s < 3; ++s) {
+        const auto g = across[f][s];
+        const signed char wanted = static_cast<signed char>(flip[f] ^ (same_direction[f][s] ? 1 : 0));
+        if (flip[g] < 0) {
+          flip[g] = wanted;
+          queue.push_back(g);
+        } else if (flip[g] != wanted) {
+          throw MeshRefused(fmt::format(
+              "{}: the surface is not orientable (like a Moebius strip or Klein bottle), so it cannot be "
+              "mapped one-to-one onto a sphere",
+              name));
+        }
+      }
+    }
+    double volume6 = 0;
+    for (auto f : face_ids) {
+      auto& t = triangles[f];
+      if (flip[f]) std::swap(t[1], t[2]);
+      volume6 += dot(input_positions[original_vertex[t[0]]],
+                     cross(input_positions[original_vertex[t[1]]], input_positions[original_vertex[t[2]]]));
+    }
+    const bool turn_outward = volume6 < 0;
+    for (auto f : face_ids) {
+      if (turn_outward) std::swap(triangles[f][1], triangles[f][2]);
+      report.triangles_flipped += (flip[f] != 0) != turn_outward;
+    }
+  }
+
+  // Keep the chosen component, re-index its vertices.
+  std::vector<std::int32_t> component_index(vertex_count, -1);
+  PreparedMesh result;
+  Mesh& mesh = result.mesh;
+  std::int64_t edge_count = 0;
+  for (std::size_t k = 0; k < edges.size(); k += 2) edge_count += component_of_face[edges[k].face] == kept;
+  for (auto f : face_ids) {
+    Triangle t = triangles[f];
+    for (auto& v : t) {
+      if (component_index[v] < 0) {
+        component_index[v] = static_cast<std::int32_t>(mesh.positions.size());
+        mesh.positions.push_back(input_positions[original_vertex[v]]);
+        report.original_vertex.push_back(original_vertex[v]);
+      }
+      v = component_index[v];
+    }
+    mesh.triangles.push_back(t);
+  }
+  const std::int64_t euler = static_cast<std::int64_t>(mesh.positions.size()) - edge_count +
+                             static_cast<std::int64_t>(mesh.triangles.size());
+  report.genus = static_cast<int>((2 - euler) / 2);
+  if (euler != 2) {
+    throw MeshRefused(fmt::format(
+        "{}: the surface has genus {} ({} handles or tunnels; Euler characteristic {}), but a one-to-one map onto "
+        "a sphere needs genus 0. Close the handles first (spheremap's own repair comes with molecular surfaces)",
+        name, report.genus, report.genus, euler));
+  }
+  if (attributes_from) {
+    for (const auto& [key, values] : attributes_from->real_attributes) {
+      auto& out = mesh.real_attributes[key];
+      for (auto v : report.original_vertex) out.push_back(values[v]);
+    }
+    for (const auto& [key, values] : attributes_from->integer_attributes) {
+      auto& out = mesh.integer_attributes[key];
+      for (auto v : report.original_vertex) out.push_back(values[v]);
+    }
+  }
+  result.report = std::move(report);
+  return result;
+}
+
+}  // namespace
+
+PreparedMesh prepare_mesh(const PolygonSoup& soup, const PrepareOptions& options) {
+  return prepare_triangles(soup.positions, soup.faces, options, nullptr);
+}
+
+PreparedMesh prepare_mesh(const Mesh& mesh, const PrepareOptions& options) {
+  std::vector<std::vector<std::int32_t>> faces;
+  faces.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) faces.push_back({t[0], t[1], t[2]});
+  return prepare_triangles(mesh.positions, faces, options, &mesh);
+}
+
+}  // namespace spheremap

@@ -1,0 +1,136 @@
+// The command line as a user runs it: exit codes, files written (or not), byte-identical reruns.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/shapes.hpp"
+
+namespace spheremap {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Run {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Run run_cli(const std::string& arguments) {
+  const std::string command = std::string(SPHEREMAP_CLI_PATH) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (std::size_t got = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, got);
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class Cli : public testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() / ("spheremap-cli-" + std::to_string(::getpid()) + "-" +
+                                           testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path folder_;
+};
+
+std::string write_obj(const fs::path& path, const Mesh& mesh) {
+  std::ofstream out(path);
+  for (const auto& p : mesh.positions) out << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+  for (const auto& t : mesh.triangles) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  return path.string();
+}
+
+TEST_F(Cli, HelpListsTheOptions) {
+  const auto top = run_cli("--help");
+  EXPECT_EQ(top.exit_code, 0);
+  EXPECT_NE(top.output.find("map"), std::string::npos);
+  const auto map = run_cli("map --help");
+  EXPECT_EQ(map.exit_code, 0);
+  for (const char* option : {"--weights", "--solver", "--poles", "--component", "--ascii", "--weld-tolerance", "--no-repair"})
+    EXPECT_NE(map.output.find(option), std::string::npos) << option;
+}
+
+TEST_F(Cli, MapsAMeshAndWritesThreeFilesIdenticallyTwice) {
+  const auto input = write_obj(folder_ / "ico.obj", make_icosphere(2));
+  const auto first = run_cli("map " + input + " -o " + (folder_ / "a").string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("CERTIFIED"), std::string::npos) << first.output;
+  for (const char* name : {"surface.ply", "sphere.ply", "report.json"}) EXPECT_TRUE(fs::exists(folder_ / "a" / name)) << name;
+  const auto second = run_cli("map " + input + " -o " + (folder_ / "b").string());
+  ASSERT_EQ(second.exit_code, 0);
+  EXPECT_EQ(slurp(folder_ / "a" / "sphere.ply"), slurp(folder_ / "b" / "sphere.ply"));
+  EXPECT_EQ(slurp(folder_ / "a" / "surface.ply"), slurp(folder_ / "b" / "surface.ply"));
+  // The PLY files share vertex count and triangles, and carry theta and phi.
+  const auto sphere = read_polygon_soup(folder_ / "a" / "sphere.ply");
+  const auto surface = read_polygon_soup(folder_ / "a" / "surface.ply");
+  EXPECT_EQ(sphere.positions.size(), surface.positions.size());
+  EXPECT_EQ(sphere.faces, surface.faces);
+  const auto header = slurp(folder_ / "a" / "sphere.ply").substr(0, 600);
+  EXPECT_NE(header.find("binary_little_endian"), std::string::npos);
+  EXPECT_NE(header.find("property double theta"), std::string::npos);
+  EXPECT_NE(header.find("property double phi"), std::string::npos);
+}
+
+TEST_F(Cli, AsciiAndEveryWeighting) {
+  const auto input = write_obj(folder_ / "ico.obj", make_icosphere(2));
+  for (const char* weights : {"uniform", "cotan", "mean-value"}) {
+    const auto run = run_cli("map " + input + " -o " + (folder_ / weights).string() + " --ascii --weights " + weights);
+    EXPECT_EQ(run.exit_code, 0) << weights << run.output;
+    EXPECT_NE(slurp(folder_ / weights / "sphere.ply").find("format ascii 1.0"), std::string::npos);
+    EXPECT_NE(slurp(folder_ / weights / "report.json").find(std::string("\"weights\": \"") + weights), std::string::npos);
+  }
+}
+
+TEST_F(Cli, RefusedMeshExitsTwoAndWritesNothing) {
+  Mesh open = make_icosphere(1);
+  open.triangles.pop_back();
+  const auto input = write_obj(folder_ / "open.obj", open);
+  const auto run = run_cli("map " + input + " -o " + (folder_ / "out").string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("open.obj"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("3 boundary edges"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(folder_ / "out" / "sphere.ply"));
+  EXPECT_FALSE(fs::exists(folder_ / "out" / "report.json"));
+}
+
+TEST_F(Cli, UnreadableInputAndBadOptionsExitOne) {
+  EXPECT_EQ(run_cli("map " + (folder_ / "missing.obj").string() + " -o " + folder_.string()).exit_code, 1);
+  const auto input = write_obj(folder_ / "ico.obj", make_icosphere(1));
+  EXPECT_NE(run_cli("map " + input + " -o " + folder_.string() + " --weights magic").exit_code, 0);
+  const auto poles = run_cli("map " + input + " -o " + folder_.string() + " --poles 1");
+  EXPECT_EQ(poles.exit_code, 1) << poles.output;
+  EXPECT_NE(poles.output.find("--poles"), std::string::npos);
+}
+
+TEST_F(Cli, ComponentOptionChoosesAPiece) {
+  Mesh two = make_icosphere(1);
+  const Mesh other = make_icosphere(1);
+  const auto offset = static_cast<std::int32_t>(two.positions.size());
+  for (auto p : other.positions) two.positions.push_back({p[0] + 3, p[1], p[2]});
+  for (auto t : other.triangles) two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const auto input = write_obj(folder_ / "two.obj", two);
+  EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "refused").string()).exit_code, 2);
+  EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "largest").string() + " --component largest").exit_code, 0);
+  EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "one").string() + " --component 1").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace spheremap
