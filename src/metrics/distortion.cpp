@@ -1,6 +1,11 @@
 #include "spheremap/metrics/distortion.hpp"
 
-#include <Eigen/Dense>
+// GCC's -Wmaybe-uninitialized misfires inside Eigen's tridiagonalization of the 4x4 matrix.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <Eigen/Eigenvalues>
+#pragma GCC diagnostic pop
+
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -37,10 +37,10 @@ class CompensatedSum {
 bool Certificate::certified() const { return folded == 0 && collapsed == 0 && std::fabs(coverage - 1) < 1e-9; }
 
 double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  // tan(Ω/2) = N / D with N = det[a, b, c] and D = 1 + a·b + b·c + c·a. Both are rewritten so that
+  // tan(Ω/2) = N / D with N = det[a, b, c] and D = 1 + a·b + b·c + c·a. Both are evaluated so that
   // they stay accurate when they are tiny, which happens for small triangles (N) and for thin
-  // triangles with two nearly antipodal corners (N and D, with Ω near ±2π): evaluated as written,
-  // those lose up to half the digits and the coverage of a map drifts by 1e-9.
+  // triangles with two nearly antipodal corners (N and D, Ω near ±2π); evaluated as written, those
+  // lose up to half the digits and the coverage of a whole map drifts by 1e-9.
   // Rotate the corners (Ω is invariant under cyclic order) so that (u, w) is the most antipodal pair.
   const double ab = dot(a, b), bc = dot(b, c), ca = dot(c, a);
   const bool ab_lowest = ab <= bc && ab <= ca, bc_lowest = bc < ab && bc <= ca;
@@ -51,10 +51,26 @@ double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 u_short = dot(u, w) >= 0 ? u - w : u + w;
   const Vec3 v_short = dot(v, w) >= 0 ? v - w : v + w;
   const double triple_product = dot(u_short, cross(v_short, w));
-  // For unit vectors, with s = u + w: 1 + u·w = |s|²/2, so D = s·v + |s|²/2 = s·(v + s/2), in which
-  // the short s carries the cancellation exactly.
-  const Vec3 s = u + w;
-  const double denominator = dot(s, v + 0.5 * s);
+  // D = (1 + u·w) + v·(u + w). The short u + w carries the second term's cancellation exactly; the
+  // first needs u·w to twice the working precision when it is close to -1. (Rewriting 1 + u·w as
+  // |u + w|²/2 would not do: the inputs are unit only to within an ulp, and that ulp, divided by a
+  // tiny D, is exactly the error to avoid.)
+  double one_plus_uw = 1 + dot(u, w);
+  if (one_plus_uw < 0.5) {
+    // Sum of 1 and the exact products (std::fma yields each rounding error) with compensation:
+    // accurate as if computed in twice the precision (Ogita, Rump & Oishi 2005, Dot2).
+    double sum = 1, compensation = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double product = u[i] * w[i];
+      const double product_error = std::fma(u[i], w[i], -product);
+      const double new_sum = sum + product;
+      const double virtual_product = new_sum - sum;
+      compensation += (sum - (new_sum - virtual_product)) + (product - virtual_product) + product_error;
+      sum = new_sum;
+    }
+    one_plus_uw = sum + compensation;
+  }
+  const double denominator = one_plus_uw + dot(v, u + w);
   return 2 * std::atan2(triple_product, denominator);
 }
 

@@ -66,17 +66,18 @@ class Untangler {
     (void)n;
   }
 
-  // Smallest quality of the triangles around v if v were at p: quality = solid angle / target when
-  // positively oriented (exact predicate), -1 otherwise.
+  // Smallest quality of the triangles around v if v were at p: solid angle / target, where a triangle
+  // the exact predicate calls folded counts as negative whatever the rounded solid angle says.
   double star_quality(std::int32_t v, const Vec3& p) const {
     const auto ring = rings_.ring(v);
     double worst = INFINITY;
     for (std::size_t k = 0; k < ring.size(); ++k) {
       const auto& a = sphere_[ring[k]];
       const auto& b = sphere_[ring[(k + 1) % ring.size()]];
-      if (orientation_sign(p, a, b) <= 0) return -1;
       const auto t = star_triangle_[rings_.offsets[v] + static_cast<std::int64_t>(k)];
-      worst = std::min(worst, signed_solid_angle(p, a, b) / target_[t]);
+      double quality = signed_solid_angle(p, a, b) / target_[t];
+      if (orientation_sign(p, a, b) <= 0) quality = std::min(quality, 0.0) - 1e-300;
+      worst = std::min(worst, quality);
     }
     return worst;
   }
@@ -127,15 +128,26 @@ class Untangler {
         polygon = clip(polygon, lines[k][0], lines[k][1], lines[k][2] - t * scale[k]);
       return polygon;
     };
-    // Bisection on t: the largest t with a non-empty region is the max-min point.
-    if (region_for(0).size() < 3) return false;  // empty kernel: the neighbours must move first
-    double low = 0, high = 1;
-    while (region_for(high).size() >= 3 && high < 1e6) low = high, high *= 4;
-    for (int iteration = 0; iteration < 40; ++iteration) {
+    // Bisection on t for the largest t with a non-empty region: the point whose worst triangle is best.
+    // t may be negative: when the kernel is empty the move still makes the worst fold less bad.
+    double current_t = INFINITY;
+    {
+      const Vec3& p = sphere_[v];
+      const double h = dot(p, centre);
+      if (h <= 0) return false;
+      const Point2 here{dot(p, e1) / h, dot(p, e2) / h};
+      for (std::size_t k = 0; k < size; ++k)
+        current_t = std::min(current_t, (lines[k][0] * here[0] + lines[k][1] * here[1] + lines[k][2]) / scale[k]);
+    }
+    double low = current_t, high = std::max(current_t, 0.0) + 1;
+    if (region_for(low).size() < 3) return false;
+    while (region_for(high).size() >= 3 && high < 1e12) low = high, high *= 4;
+    for (int iteration = 0; iteration < 50; ++iteration) {
       const double middle = 0.5 * (low + high);
       (region_for(middle).size() >= 3 ? low : high) = middle;
     }
-    const auto region = region_for(0.5 * low);
+    // Slightly inside the optimum, so that the region has an interior whose centroid is robust.
+    const auto region = region_for(low - 1e-3 * std::abs(low - current_t));
     if (region.size() < 3) return false;
     Point2 mean{0, 0};
     for (const auto& q : region) mean[0] += q[0] / static_cast<double>(region.size()), mean[1] += q[1] / static_cast<double>(region.size());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -148,7 +149,18 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
   const auto representative = weld_representatives(input_positions, options.weld_tolerance);
   for (std::int32_t i = 0; i < input_count; ++i) report.vertices_welded += representative[i] != i;
 
-  // Fan triangulation, then drop degenerate and duplicate triangles.
+  // Fan triangulation from the first corner whose diagonals are not edges already: a fan whose
+  // diagonal duplicates an existing edge would make that edge non-manifold (seen on ajc_beast.obj).
+  std::unordered_set<std::uint64_t> edges_in_use;
+  auto edge_key = [](std::int32_t a, std::int32_t b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+           static_cast<std::uint32_t>(std::max(a, b));
+  };
+  for (const auto& face : faces) {
+    if (face.size() < 4) continue;
+    for (std::size_t k = 0; k < face.size(); ++k)
+      edges_in_use.insert(edge_key(representative[face[k]], representative[face[(k + 1) % face.size()]]));
+  }
   std::vector<Triangle> triangles;
   triangles.reserve(faces.size() * 2);
   for (const auto& face : faces) {
@@ -157,8 +169,24 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
       ++report.degenerate_faces_dropped;
       continue;
     }
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-      const Triangle t{representative[face[0]], representative[face[k]], representative[face[k + 1]]};
+    const std::size_t corners = face.size();
+    std::size_t apex = 0;
+    if (corners > 3) {
+      for (std::size_t start = 0; start < corners; ++start) {
+        bool free = true;
+        for (std::size_t k = 2; k + 1 < corners && free; ++k)
+          free = !edges_in_use.count(edge_key(representative[face[start]], representative[face[(start + k) % corners]]));
+        if (free) {
+          apex = start;
+          break;
+        }
+      }
+      for (std::size_t k = 2; k + 1 < corners; ++k)
+        edges_in_use.insert(edge_key(representative[face[apex]], representative[face[(apex + k) % corners]]));
+    }
+    for (std::size_t k = 1; k + 1 < corners; ++k) {
+      const Triangle t{representative[face[apex]], representative[face[(apex + k) % corners]],
+                       representative[face[(apex + k + 1) % corners]]};
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
         ++report.degenerate_faces_dropped;
         continue;

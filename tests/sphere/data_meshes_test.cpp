@@ -50,6 +50,8 @@ struct Refusal {
   std::string expected_words;
 };
 
+void PrintTo(const Refusal& refusal, std::ostream* out) { *out << refusal.file; }
+
 class DataBrokenMesh : public testing::TestWithParam<Refusal> {};
 
 TEST_P(DataBrokenMesh, IsRefusedWithItsProblemNamed) {
