@@ -45,7 +45,8 @@ class KdTree {
     return sum;
   }
 
-  // Updates (best, pair) with every j > i whose distance to point i beats or ties it.
+  // Updates (best, pair) with every point j whose distance to point i beats or ties it (ties go to the
+  // smaller index pair).
   void improve(std::int32_t i, double& best, std::pair<std::int32_t, std::int32_t>& pair) const {
     const Vec3& p = points_[i];
     std::int32_t stack[128];
@@ -57,11 +58,12 @@ class KdTree {
       if (node.left < 0) {
         for (std::int32_t k = node.begin; k < node.end; ++k) {
           const std::int32_t j = order_[k];
-          if (j <= i) continue;
+          if (j == i) continue;
           const double d = squared(p, points_[j]);
-          if (d > best || (d == best && std::make_pair(i, j) < pair)) {
+          const std::pair<std::int32_t, std::int32_t> candidate{std::min(i, j), std::max(i, j)};
+          if (d > best || (d == best && candidate < pair)) {
             best = d;
-            pair = {i, j};
+            pair = candidate;
           }
         }
         continue;
@@ -147,7 +149,24 @@ std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& pos
     best = std::nextafter(bd, 0.0);
     (void)b;
   }
-  for (std::int32_t i = 0; i < n; ++i) tree.improve(i, best, pair);
+  // Visit points from the outside in. A pair at distance D has |p - c| + |q - c| >= D, so once
+  // |p - c| + max |q - c| is below the best distance no later point can be in a better pair with
+  // another later point, and its pairs with earlier points were already examined from those.
+  Vec3 centre{0, 0, 0};
+  for (const auto& p : positions) centre = centre + (1.0 / n) * p;
+  std::vector<double> radius(n);
+  for (std::int32_t i = 0; i < n; ++i) radius[i] = norm(positions[i] - centre);
+  std::vector<std::int32_t> outside_in(n);
+  std::iota(outside_in.begin(), outside_in.end(), 0);
+  std::sort(outside_in.begin(), outside_in.end(), [&](std::int32_t x, std::int32_t y) {
+    return radius[x] != radius[y] ? radius[x] > radius[y] : x < y;
+  });
+  const double largest_radius = radius[outside_in.front()];
+  for (auto i : outside_in) {
+    // The relative margin covers the rounding of the radii and of the square root.
+    if ((radius[i] + largest_radius) * (1 + 1e-12) < std::sqrt(best)) break;
+    tree.improve(i, best, pair);
+  }
   return pair;
 }
 

@@ -25,6 +25,7 @@ EdgeWeights compute_weights(const VertexRings& rings, const std::vector<Vec3>& p
 struct HarmonicProblem {
   const VertexRings* rings;
   const EdgeWeights* weights;
+  const std::vector<Vec3>* positions;  // of the vertices, for the fill-reducing order
   std::vector<char> fixed;
   /// For fixed neighbours whose value depends on the side they are seen from (the meridian), a value per
   /// (vertex, neighbour slot); NaN means "use x[j]".

@@ -138,7 +138,7 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
 
   PlanarCoordinates planar;
   // z: harmonic between the rings.
-  detail::HarmonicProblem z_problem{&rings, &weights, std::vector<char>(n, 0), {}};
+  detail::HarmonicProblem z_problem{&rings, &weights, &work.positions, std::vector<char>(n, 0), {}};
   planar.z.assign(n, 0.0);
   z_problem.fixed[north] = z_problem.fixed[south] = 1;
   planar.z[north] = kRingZ;
@@ -188,7 +188,7 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
     throw std::runtime_error("no boundary meridian: steepest descent stalled from every northern ring vertex");
 
   // φ: rings uniformly spaced, meridian at 0 (seen from the east) and 2π (from the west).
-  detail::HarmonicProblem phi_problem{&rings, &weights, std::vector<char>(n, 0),
+  detail::HarmonicProblem phi_problem{&rings, &weights, &work.positions, std::vector<char>(n, 0),
                                       std::vector<double>(rings.neighbors.size(), std::nan(""))};
   planar.phi.assign(n, 0.0);
   phi_problem.fixed[north] = phi_problem.fixed[south] = 1;
@@ -291,7 +291,7 @@ std::vector<Vec3> tutte_stereographic(const Mesh& mesh, const VertexRings& rings
     }
   }
   const detail::EdgeWeights uniform = detail::compute_weights(rings, mesh.positions, Weights::kUniform);
-  detail::HarmonicProblem problem{&rings, &uniform, std::vector<char>(n, 0), {}};
+  detail::HarmonicProblem problem{&rings, &uniform, &mesh.positions, std::vector<char>(n, 0), {}};
   std::vector<double> x(n, 0), y(n, 0);
   constexpr double kOuterRadius = 3.0;  // outside the unit circle: the outer face becomes a cap around +z
   for (int k = 0; k < 3; ++k) {
