@@ -379,17 +379,27 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     auto best_sphere = sphere;
     auto best_certificate = result.plain_certificate;
     int rounds_without_progress = 0;
+    // Each vertex j gets a gain g_j and the weight of edge (i, j) becomes base_ij * g_j. Multiplying
+    // row i by g_i gives the same solution with base_ij * g_i * g_j, which is symmetric whenever the base
+    // weights are: the re-weighted systems stay on the Cholesky path.
+    const detail::EdgeWeights base = weights;
+    std::vector<double> gain(work.positions.size(), 1.0);
     for (int round = 1; round <= options.max_reweighting_rounds; ++round) {
       const auto ratio = vertex_area_ratios(work, all_sphere_points(planar, north, south, result.mercator_c));
+      double log_mean = 0;
+      for (std::size_t v = 0; v < gain.size(); ++v) {
+        gain[v] *= std::clamp(std::pow(ratio[v], kReweightingExponent), 1 / kReweightingStep, kReweightingStep);
+        log_mean += std::log(gain[v]) / static_cast<double>(gain.size());
+      }
+      // Only ratios of gains matter: keep them centred on 1 so that no weight over- or underflows.
+      for (auto& g : gain) g /= std::exp(log_mean);
       for (std::int32_t v = 0; v < work.rings.vertex_count(); ++v) {
         const auto ring = work.rings.ring(v);
         for (std::size_t k = 0; k < ring.size(); ++k) {
-          const double factor = std::clamp(std::pow(ratio[ring[k]], kReweightingExponent), 1 / kReweightingStep, kReweightingStep);
-          auto& w = weights.values[work.rings.offsets[v] + static_cast<std::int64_t>(k)];
-          w = std::clamp(w * factor, 1e-150, 1e150);
+          const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
+          weights.values[slot] = base.values[slot] * gain[ring[k]] * (base.symmetric ? gain[v] : 1.0);
         }
       }
-      weights.symmetric = false;
       planar = solve_planar(work, north, south, weights, options);
       sphere = to_sphere(planar, north, south, result.mercator_c, n);
       const auto certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
