@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
+#include "spheremap/io/mesh_io.hpp"
 #include "spheremap/pipeline.hpp"
+#include "spheremap/shapes.hpp"
 
 namespace {
 
@@ -67,6 +69,29 @@ int main(int argc, char** argv) {
   map_command->add_flag("--no-repair", no_repair, "The paper's algorithm only: no re-weighting, no untangling (the certificate still runs)");
   map_command->add_flag("-q,--quiet", quiet, "Print nothing on success");
 
+  auto* generate_command = app.add_subcommand(
+      "generate", "Write a generated closed genus-0 mesh (for trying spheremap, tests and benchmarks) as PLY");
+  std::string shape, generated_output;
+  int level = 3, cube_n = 10, rings = 60, segments = 32;
+  double stretch = 20, separation = 3, neck = 0.3, flips = 0, perturb = 0;
+  unsigned seed = 1;
+  generate_command->add_option("shape", shape, "icosphere | ellipsoid | dumbbell | cube")
+      ->required()
+      ->check(CLI::IsMember({"icosphere", "ellipsoid", "dumbbell", "cube"}));
+  generate_command->add_option("-o,--output", generated_output, "Output .ply file")->required();
+  generate_command->add_option("--level", level, "icosphere/ellipsoid: subdivision level (10*4^level+2 vertices)")->check(CLI::Range(0, 10));
+  generate_command->add_option("--stretch", stretch, "ellipsoid: length of the z axis (x and y are 1)")->check(CLI::PositiveNumber);
+  generate_command->add_option("--n", cube_n, "cube: squares per face edge (6n^2+2 vertices)")->check(CLI::Range(1, 10000));
+  generate_command->add_option("--separation", separation, "dumbbell: distance between the two unit spheres' centres");
+  generate_command->add_option("--neck", neck, "dumbbell: radius of the neck (0..1)");
+  generate_command->add_option("--rings", rings, "dumbbell: vertex rings along the axis")->check(CLI::PositiveNumber);
+  generate_command->add_option("--segments", segments, "dumbbell: vertices per ring")->check(CLI::Range(3, 100000));
+  generate_command->add_option("--flips", flips, "probability of random edge flips (creates degree-3 vertices)")->check(CLI::Range(0.0, 1.0));
+  generate_command->add_option("--perturb", perturb, "random vertex offsets, in mean edge lengths")->check(CLI::NonNegativeNumber);
+  generate_command->add_option("--seed", seed, "random seed for --flips and --perturb");
+  generate_command->add_flag("--ascii", options.ascii, "ASCII PLY");
+  generate_command->add_flag("-q,--quiet", quiet, "Print nothing on success");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -74,6 +99,17 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*generate_command) {
+      spheremap::Mesh mesh = shape == "icosphere"   ? spheremap::make_icosphere(level)
+                             : shape == "ellipsoid" ? spheremap::make_ellipsoid(level, 1, 1, stretch)
+                             : shape == "dumbbell"  ? spheremap::make_dumbbell(separation, neck, rings, segments)
+                                                    : spheremap::make_subdivided_cube(cube_n);
+      if (flips > 0) mesh = spheremap::random_edge_flips(mesh, flips, seed);
+      if (perturb > 0) mesh = spheremap::perturb_vertices(mesh, perturb, seed);
+      spheremap::write_ply(generated_output, mesh, spheremap::PlyWriteOptions{options.ascii});
+      if (!quiet)
+        std::cout << fmt::format("{}: {} vertices, {} triangles\n", generated_output, mesh.vertex_count(), mesh.triangle_count());
+    }
     if (*map_command) {
       options.map.weights = weights == "cotan"        ? spheremap::Weights::kCotangent
                             : weights == "mean-value" ? spheremap::Weights::kMeanValue

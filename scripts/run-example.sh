@@ -4,5 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
-./build/spheremap map examples/dumbbell.obj -o out/example
+./build/spheremap map examples/dumbbell.ply -o out/example
 echo "outputs: out/example/surface.ply out/example/sphere.ply out/example/report.json"

@@ -416,9 +416,9 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
   report.genus = static_cast<int>((2 - euler) / 2);
   if (euler != 2) {
     throw MeshRefused(fmt::format(
-        "{}: the surface has genus {} ({} handles or tunnels; Euler characteristic {}), but a one-to-one map onto "
-        "a sphere needs genus 0. Close the handles first (spheremap's own repair comes with molecular surfaces)",
-        name, report.genus, report.genus, euler));
+        "{}: the surface has genus {} ({}; Euler characteristic {}), but a one-to-one map onto a sphere needs "
+        "genus 0. Close the handles first (spheremap's own repair comes with molecular surfaces)",
+        name, report.genus, plural(report.genus, "handle or tunnel", "handles or tunnels"), euler));
   }
   if (attributes_from) {
     for (const auto& [key, values] : attributes_from->real_attributes) {
