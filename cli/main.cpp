@@ -44,7 +44,8 @@ int main(int argc, char** argv) {
       "spheremap: maps closed genus-0 surfaces onto the unit sphere, one-to-one and certified\n"
       "(Rahi & Sharp, 'Mapping Complicated Surfaces onto a Sphere', with the cases the paper leaves out).\n"
       "Exit codes: 0 certified map written; 1 bad command line or unreadable input; 2 mesh refused\n"
-      "(open, non-manifold, several components, genus != 0; nothing written); 3 map written but NOT certified."};
+      "(open, non-manifold, several components, genus != 0; nothing written); 3 map written but NOT certified;\n"
+      "4 internal error."};
   app.set_version_flag("--version", "spheremap 0.1.0");
   app.require_subcommand(1);
 
@@ -95,7 +96,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are "errors" with code 0; every real command-line mistake exits 1.
+    const int printed = app.exit(e);
+    return printed == 0 ? 0 : static_cast<int>(spheremap::ExitCode::kUsage);
   }
 
   try {

@@ -111,10 +111,25 @@ TEST_F(Cli, RefusedMeshExitsTwoAndWritesNothing) {
   EXPECT_FALSE(fs::exists(folder_ / "out" / "report.json"));
 }
 
+TEST_F(Cli, UncertifiedMapExitsThreeButIsWrittenWithItsBadTriangles) {
+  // The bundled example folds two triangles under the plain algorithm (a dividing edge at a pole).
+  const std::string example = std::string(SPHEREMAP_SOURCE_DIR) + "/examples/dumbbell.ply";
+  const auto plain = run_cli("map " + example + " -o " + (folder_ / "plain").string() + " --no-repair");
+  EXPECT_EQ(plain.exit_code, 3) << plain.output;
+  EXPECT_NE(plain.output.find("NOT CERTIFIED"), std::string::npos) << plain.output;
+  EXPECT_TRUE(fs::exists(folder_ / "plain" / "sphere.ply"));
+  const auto report = slurp(folder_ / "plain" / "report.json");
+  EXPECT_NE(report.find("\"certified\": false"), std::string::npos);
+  EXPECT_EQ(report.find("\"folded_triangles\": []"), std::string::npos) << "the folded triangles must be listed";
+  const auto repaired = run_cli("map " + example + " -o " + (folder_ / "repaired").string());
+  EXPECT_EQ(repaired.exit_code, 0) << repaired.output;
+}
+
 TEST_F(Cli, UnreadableInputAndBadOptionsExitOne) {
   EXPECT_EQ(run_cli("map " + (folder_ / "missing.obj").string() + " -o " + folder_.string()).exit_code, 1);
   const auto input = write_obj(folder_ / "ico.obj", make_icosphere(1));
-  EXPECT_NE(run_cli("map " + input + " -o " + folder_.string() + " --weights magic").exit_code, 0);
+  EXPECT_EQ(run_cli("map " + input + " -o " + folder_.string() + " --weights magic").exit_code, 1);
+  EXPECT_EQ(run_cli("map").exit_code, 1);
   const auto poles = run_cli("map " + input + " -o " + folder_.string() + " --poles 1");
   EXPECT_EQ(poles.exit_code, 1) << poles.output;
   EXPECT_NE(poles.output.find("--poles"), std::string::npos);
