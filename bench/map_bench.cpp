@@ -30,14 +30,21 @@ void run(benchmark::State& state, spheremap::Solver solver) {
   const auto& mesh = cube(static_cast<int>(state.range(0)));
   spheremap::MapOptions options;
   options.solver = solver;
-  bool certified = true;
+  bool certified = true, converged = true;
+  std::int64_t sweeps = 0;
   for (auto _ : state) {
     const auto map = spheremap::map_to_sphere(mesh, options);
     certified = certified && map.certificate.certified();
+    converged = converged && map.gauss_seidel_converged;
+    sweeps = map.gauss_seidel_sweeps;
     benchmark::DoNotOptimize(map.sphere.data());
   }
   state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
   state.counters["certified"] = certified ? 1 : 0;
+  if (solver == spheremap::Solver::kGaussSeidel) {
+    state.counters["sweeps_z_plus_phi"] = static_cast<double>(sweeps);
+    state.counters["converged"] = converged ? 1 : 0;
+  }
   state.counters["peak_rss_MB"] = peak_rss_megabytes();
 }
 

@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"uniform", "cotan", "mean-value"}));
   map_command->add_option("--solver", solver, "direct (CHOLMOD/UMFPACK, default) or gauss-seidel (the paper's relaxation)")
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));
-  map_command->add_option("--poles", poles, "North and south pole vertex indices 'i,j' (after welding); default: the two vertices farthest apart");
+  map_command->add_option("--poles", poles, "North and south pole vertices 'i,j': 0-based indices in the input file's vertex order, at least 3 edges apart; default: the two vertices farthest apart");
   map_command->add_option("--component", component, "With several connected components: 'largest' or a component number");
   map_command->add_option("--weld-tolerance", options.prepare.weld_tolerance, "Weld vertices closer than this (default 0: exactly coincident only)")
       ->check(CLI::NonNegativeNumber);
@@ -125,10 +125,11 @@ int main(int argc, char** argv) {
       spheremap::write_map_outputs(output, result, options);
       if (!quiet || !result.map.certificate.certified()) std::cout << spheremap::summary_text(result);
       if (!result.map.certificate.certified()) {
+        const auto& c = result.map.certificate;
         std::cerr << fmt::format(
-            "spheremap: {}: THE MAP IS NOT CERTIFIED: {} folded and {} collapsed triangles (listed in {}/report.json). "
-            "It was written anyway; do not trust it where those triangles are.\n",
-            input, result.map.certificate.folded, result.map.certificate.collapsed, output);
+            "spheremap: {}: THE MAP IS NOT CERTIFIED: {} folded and {} collapsed triangles (listed in {}/report.json), "
+            "coverage {:.12f} (must be 1). It was written anyway; do not trust it.\n",
+            input, c.folded, c.collapsed, output, c.coverage);
         return static_cast<int>(spheremap::ExitCode::kNotCertified);
       }
     }
@@ -136,9 +137,6 @@ int main(int argc, char** argv) {
   } catch (const spheremap::Error& e) {
     std::cerr << "spheremap: error: " << e.what() << "\n";
     return static_cast<int>(e.code());
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "spheremap: error: " << e.what() << "\n";
-    return static_cast<int>(spheremap::ExitCode::kUsage);
   } catch (const std::exception& e) {
     std::cerr << "spheremap: internal error: " << e.what() << "\n";
     return 4;

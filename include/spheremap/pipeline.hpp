@@ -14,6 +14,8 @@ namespace spheremap {
 
 struct MapJobOptions {
   PrepareOptions prepare;
+  /// map.poles, if set, are vertex indices of the input (0-based, in file order), translated through
+  /// welding; run_map_job throws InputError if one does not exist or was dropped.
   MapOptions map;
   bool ascii = false;  // ASCII PLY outputs (full precision) instead of binary
 };

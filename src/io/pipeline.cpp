@@ -34,6 +34,28 @@ nlohmann::json certificate_json(const Certificate& c) {
           {"collapsed_triangles", head(c.collapsed_triangles)}};
 }
 
+// Poles are given as indices in the input file; the map wants indices in the prepared mesh.
+MapOptions map_options_for(const PreparedMesh& prepared, const MapJobOptions& options, const std::string& name) {
+  MapOptions map = options.map;
+  if (!map.poles) return map;
+  const auto& of_input = prepared.report.vertex_of_input;
+  auto translate = [&](std::int32_t input_vertex) {
+    if (input_vertex < 0 || input_vertex >= static_cast<std::int32_t>(of_input.size()))
+      throw InputError(fmt::format("{}: --poles: vertex {} does not exist (the file has vertices 0 to {})", name,
+                                   input_vertex, static_cast<std::int64_t>(of_input.size()) - 1));
+    if (of_input[input_vertex] < 0)
+      throw InputError(fmt::format("{}: --poles: vertex {} is not part of the mapped surface (unused, or in another "
+                                   "component); choose another vertex",
+                                   name, input_vertex));
+    return of_input[input_vertex];
+  };
+  const auto [north, south] = *map.poles;
+  map.poles = std::make_pair(translate(north), translate(south));
+  if (map.poles->first == map.poles->second)
+    throw InputError(fmt::format("{}: --poles {},{}: the two poles are the same vertex (after welding)", name, north, south));
+  return map;
+}
+
 }  // namespace
 
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
@@ -50,7 +72,7 @@ MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions
   result.read_seconds = read_seconds;
   result.prepare_seconds = prepare_seconds;
   result.prepared = std::move(prepared);
-  result.map = map_to_sphere(result.prepared.mesh, options.map);
+  result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, named.prepare.source_name));
   const auto metrics_start = std::chrono::steady_clock::now();
   result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
   result.metrics_seconds = seconds_since(metrics_start);
@@ -65,7 +87,7 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
   const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(mesh, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
-  result.map = map_to_sphere(result.prepared.mesh, options.map);
+  result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, name));
   const auto metrics_start = std::chrono::steady_clock::now();
   result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
   result.metrics_seconds = seconds_since(metrics_start);

@@ -13,6 +13,7 @@
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/shapes.hpp"
 #include "untangle.hpp"
 
 namespace spheremap {
@@ -278,44 +279,6 @@ std::vector<Vec3> all_sphere_points(const PlanarCoordinates& planar, std::int32_
   return to_sphere(planar, north, south, c, static_cast<std::int32_t>(planar.z.size()));
 }
 
-// Meshes too small for poles and disjoint rings (graph distance N–S below 3, e.g. a tetrahedron):
-// a Tutte embedding with one triangle as the outer face, lifted by inverse stereographic projection.
-std::vector<Vec3> tutte_stereographic(const Mesh& mesh, const VertexRings& rings, std::int32_t north,
-                                      const MapOptions& options) {
-  const auto n = static_cast<std::int32_t>(mesh.positions.size());
-  Triangle outer{};
-  for (const auto& t : mesh.triangles) {
-    if (t[0] == north || t[1] == north || t[2] == north) {
-      outer = t;
-      break;
-    }
-  }
-  const detail::EdgeWeights uniform = detail::compute_weights(rings, mesh.positions, Weights::kUniform);
-  detail::HarmonicProblem problem{&rings, &uniform, &mesh.positions, std::vector<char>(n, 0), {}};
-  std::vector<double> x(n, 0), y(n, 0);
-  constexpr double kOuterRadius = 3.0;  // outside the unit circle: the outer face becomes a cap around +z
-  for (int k = 0; k < 3; ++k) {
-    problem.fixed[outer[k]] = 1;
-    x[outer[k]] = kOuterRadius * std::cos(kPi / 2 + 2 * kPi * k / 3);
-    y[outer[k]] = kOuterRadius * std::sin(kPi / 2 + 2 * kPi * k / 3);
-  }
-  detail::solve_harmonic(problem, x, options.solver, options.gauss_seidel_tolerance, options.gauss_seidel_max_sweeps);
-  detail::solve_harmonic(problem, y, options.solver, options.gauss_seidel_tolerance, options.gauss_seidel_max_sweeps);
-  std::vector<Vec3> sphere(n);
-  for (std::int32_t v = 0; v < n; ++v) {
-    const double r2 = x[v] * x[v] + y[v] * y[v];
-    sphere[v] = {2 * x[v] / (r2 + 1), 2 * y[v] / (r2 + 1), (r2 - 1) / (r2 + 1)};
-  }
-  // Stereographic projection may reverse orientation; decide on a triangle that is not the outer one.
-  for (const auto& t : mesh.triangles) {
-    if (t == outer) continue;
-    if (orientation_sign(sphere[t[0]], sphere[t[1]], sphere[t[2]]) < 0)
-      for (auto& p : sphere) p[0] = -p[0];
-    break;
-  }
-  return sphere;
-}
-
 }  // namespace
 
 SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
@@ -328,7 +291,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   if (options.poles) {
     const auto [a, b] = *options.poles;
     if (a < 0 || b < 0 || a >= n || b >= n || a == b)
-      throw std::invalid_argument(fmt::format("poles {},{} must be two different vertices in [0, {})", a, b, n));
+      throw InputError(fmt::format("poles {},{} must be two different vertices in [0, {})", a, b, n));
     result.north = a;
     result.south = b;
     result.poles_from_options = true;
@@ -337,15 +300,55 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   }
   const auto north = result.north, south = result.south;
   result.pole_graph_distance = graph_distances(work.rings, north)[south];
+  if (result.poles_from_options && result.pole_graph_distance < 2)
+    throw InputError(fmt::format("poles {},{} are joined by an edge, which cannot join two antipodal points; choose "
+                                 "poles at least 2 edges apart (or leave --poles out)",
+                                 north, south));
   timer.lap("poles");
 
   std::vector<Vec3> sphere;
   PlanarCoordinates planar;
   detail::EdgeWeights weights;
-  if (result.pole_graph_distance < 3) {
-    result.method = "tutte-stereographic";
-    sphere = tutte_stereographic(mesh, work.rings, north, options);
-    result.solver_used = options.solver == Solver::kDirect ? "direct" : "gauss-seidel";
+  if (result.pole_graph_distance < 4) {
+    // Too few edges between the poles: below 3 the rings are not disjoint (tetrahedron, octahedron,
+    // bipyramids); at 3 an edge can join the two rings and land on antipodal points. Map a midpoint
+    // subdivision instead, whose original vertices keep their indices, and keep only those. The input's
+    // triangles are then checked and repaired like any other map.
+    result.method = "refined-poles-and-rings";
+    Mesh refined = mesh;
+    // Adjacent poles (every pair of a tetrahedron is an edge) would put an edge between antipodal
+    // points: the inner south pole is then the refined vertex farthest from N (in edges, then in space)
+    // that is not N nor an original neighbour of N.
+    std::vector<char> excluded(n, 0);
+    excluded[north] = 1;
+    if (result.pole_graph_distance < 2)
+      for (auto w : work.rings.ring(north)) excluded[w] = 1;
+    std::int32_t inner_south = south;
+    std::int32_t inner_distance = 0;
+    do {
+      refined = subdivide_midpoint(refined, 1);
+      ++result.refinement_levels;
+      const auto count = static_cast<std::int32_t>(refined.positions.size());
+      const auto distance = graph_distances(build_vertex_rings(count, refined.triangles), north);
+      if (result.pole_graph_distance < 2) {
+        inner_south = -1;
+        for (std::int32_t v = 0; v < count; ++v) {
+          if (v < n && excluded[v]) continue;
+          if (inner_south < 0 || distance[v] > distance[inner_south] ||
+              (distance[v] == distance[inner_south] && squared_distance(refined.positions[v], refined.positions[north]) >
+                                                           squared_distance(refined.positions[inner_south], refined.positions[north])))
+            inner_south = v;
+        }
+      }
+      inner_distance = distance[inner_south];
+    } while (inner_distance < 4);
+    MapOptions inner = options;
+    inner.poles = std::make_pair(north, inner_south);
+    const SphereMap refined_map = map_to_sphere(refined, inner);
+    sphere.assign(refined_map.sphere.begin(), refined_map.sphere.begin() + n);
+    result.solver_used = refined_map.solver_used;
+    result.theta0 = refined_map.theta0;
+    result.mercator_c = refined_map.mercator_c;
     timer.lap("solve");
   } else {
     result.method = "poles-and-rings";
@@ -377,6 +380,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     // every vertex towards its less collapsed neighbours, which spreads the limb; the weights stay
     // positive, so the planar map stays one-to-one (Floater 2003).
     auto best_sphere = sphere;
+    auto best_planar = planar;
     auto best_certificate = result.plain_certificate;
     int rounds_without_progress = 0;
     // Each vertex j gets a gain g_j and the weight of edge (i, j) becomes base_ij * g_j. Multiplying
@@ -409,6 +413,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
                            certificate.min_area_ratio > best_certificate.min_area_ratio);
       if (better) {
         best_sphere = sphere;
+        best_planar = planar;
         best_certificate = certificate;
         rounds_without_progress = 0;
       } else if (++rounds_without_progress >= kReweightingPatience) {
@@ -417,6 +422,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
       if (certificate.collapsed == 0) break;
     }
     sphere = std::move(best_sphere);
+    planar = std::move(best_planar);
     result.solver_used = planar.z_stats.solver;
     timer.lap("reweight");
   }
@@ -427,7 +433,8 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   timer.lap("superpose");
 
   auto certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
-  if (options.repair && !certificate.certified()) {
+  // Local moves can remove folds and collapse but cannot change how often the image covers the sphere.
+  if (options.repair && !certificate.certified() && std::abs(certificate.coverage - 1) < 1e-9) {
     result.untangling_moves =
         detail::untangle_on_sphere(mesh, work.rings.vertex_count() == n ? work.rings : build_vertex_rings(n, mesh.triangles),
                                    sphere, options.collapse_floor, options.max_untangling_sweeps);

@@ -53,6 +53,12 @@ std::vector<std::int32_t> weld_representatives(const std::vector<Vec3>& position
     }
     return representative;
   }
+  double largest = 0;
+  for (const auto& p : positions) largest = std::max({largest, std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
+  if (largest / tolerance > 1e15)
+    throw InputError(fmt::format("weld tolerance {} is too small for coordinates as large as {} (below double "
+                                 "precision); use 0 to weld exactly coincident vertices",
+                                 tolerance, largest));
   // Grid hashing with cells of the tolerance: welded pairs lie in the same or adjacent cells.
   auto cell_of = [&](const Vec3& p) {
     return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(p[0] / tolerance)),
@@ -157,7 +163,6 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
            static_cast<std::uint32_t>(std::max(a, b));
   };
   for (const auto& face : faces) {
-    if (face.size() < 4) continue;
     for (std::size_t k = 0; k < face.size(); ++k)
       edges_in_use.insert(edge_key(representative[face[k]], representative[face[(k + 1) % face.size()]]));
   }
@@ -379,12 +384,15 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
         }
       }
     }
+    // Relative to a point of the surface: far from the origin, raw triple products cancel and the sign of
+    // the volume is lost (a mesh offset by 1e9 came out inside-out).
+    const Vec3 origin = input_positions[original_vertex[triangles[face_ids.front()][0]]];
     double volume6 = 0;
     for (auto f : face_ids) {
       auto& t = triangles[f];
       if (flip[f]) std::swap(t[1], t[2]);
-      volume6 += dot(input_positions[original_vertex[t[0]]],
-                     cross(input_positions[original_vertex[t[1]]], input_positions[original_vertex[t[2]]]));
+      volume6 += dot(input_positions[original_vertex[t[0]]] - origin,
+                     cross(input_positions[original_vertex[t[1]]] - origin, input_positions[original_vertex[t[2]]] - origin));
     }
     const bool turn_outward = volume6 < 0;
     for (auto f : face_ids) {
@@ -393,23 +401,30 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
     }
   }
 
-  // Keep the chosen component, re-index its vertices.
+  // Keep the chosen component; its vertices keep their input order, so that with nothing welded or
+  // dropped a vertex has the same index in the outputs as in the input file.
   std::vector<std::int32_t> component_index(vertex_count, -1);
   PreparedMesh result;
   Mesh& mesh = result.mesh;
   std::int64_t edge_count = 0;
   for (std::size_t k = 0; k < edges.size(); k += 2) edge_count += component_of_face[edges[k].face] == kept;
+  for (auto f : face_ids)
+    for (auto v : triangles[f]) component_index[v] = 0;
+  for (std::int32_t v = 0; v < vertex_count; ++v) {
+    if (component_index[v] < 0) continue;
+    component_index[v] = static_cast<std::int32_t>(mesh.positions.size());
+    mesh.positions.push_back(input_positions[original_vertex[v]]);
+    report.original_vertex.push_back(original_vertex[v]);
+  }
   for (auto f : face_ids) {
     Triangle t = triangles[f];
-    for (auto& v : t) {
-      if (component_index[v] < 0) {
-        component_index[v] = static_cast<std::int32_t>(mesh.positions.size());
-        mesh.positions.push_back(input_positions[original_vertex[v]]);
-        report.original_vertex.push_back(original_vertex[v]);
-      }
-      v = component_index[v];
-    }
+    for (auto& v : t) v = component_index[v];
     mesh.triangles.push_back(t);
+  }
+  report.vertex_of_input.assign(input_count, -1);
+  for (std::int32_t i = 0; i < input_count; ++i) {
+    const auto compact = new_index[representative[i]];
+    if (compact >= 0 && component_index[compact] >= 0) report.vertex_of_input[i] = component_index[compact];
   }
   const std::int64_t euler = static_cast<std::int64_t>(mesh.positions.size()) - edge_count +
                              static_cast<std::int64_t>(mesh.triangles.size());

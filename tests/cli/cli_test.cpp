@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "spheremap/io/mesh_io.hpp"
+#include "spheremap/mesh.hpp"
 #include "spheremap/shapes.hpp"
 
 namespace spheremap {
@@ -133,6 +134,20 @@ TEST_F(Cli, UnreadableInputAndBadOptionsExitOne) {
   const auto poles = run_cli("map " + input + " -o " + folder_.string() + " --poles 1");
   EXPECT_EQ(poles.exit_code, 1) << poles.output;
   EXPECT_NE(poles.output.find("--poles"), std::string::npos);
+}
+
+TEST_F(Cli, PolesAreInputIndicesAndMustBeFarEnoughApart) {
+  const Mesh ico = make_icosphere(2);
+  const auto input = write_obj(folder_ / "ico.obj", ico);
+  const auto run = run_cli("map " + input + " -o " + (folder_ / "poles").string() + " --poles 5,17");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(slurp(folder_ / "poles" / "report.json").find("\"north_pole\": 5,"), std::string::npos);
+  const auto neighbour = ico.triangles[0];
+  const auto close = run_cli("map " + input + " -o " + (folder_ / "close").string() + " --poles " +
+                             std::to_string(neighbour[0]) + "," + std::to_string(neighbour[1]));
+  EXPECT_EQ(close.exit_code, 1) << close.output;
+  EXPECT_NE(close.output.find("joined by an edge"), std::string::npos) << close.output;
+  EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "none").string() + " --poles 5,100000").exit_code, 1);
 }
 
 TEST_F(Cli, ComponentOptionChoosesAPiece) {

@@ -94,6 +94,49 @@ TEST(Prepare, TriangulatesPolygons) {
   EXPECT_EQ(prepared.report.polygons_triangulated, 6);
 }
 
+TEST(Prepare, QuadWhoseFirstDiagonalIsAnExistingEdgeIsSplitTheOtherWay) {
+  // A tetrahedron written as one quad and two triangles; the quad's 1-3 diagonal is a triangle's edge.
+  PolygonSoup soup;
+  soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  soup.faces = {{0, 1, 2, 3}, {2, 1, 0}, {0, 3, 2}};
+  const auto prepared = prepare_mesh(soup);
+  EXPECT_EQ(prepared.mesh.triangle_count(), 4u);
+  EXPECT_EQ(prepared.report.duplicate_faces_dropped, 0);
+}
+
+TEST(Prepare, OrientsOutwardFarFromTheOrigin) {
+  Mesh far = make_ellipsoid(2, 1, 2, 3);
+  for (auto& p : far.positions) p = {p[0] + 1e9, p[1] + 1e9, p[2] + 1e9};
+  EXPECT_EQ(prepare_mesh(far).report.triangles_flipped, 0);
+  Mesh inward = far;
+  for (auto& t : inward.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(prepare_mesh(inward).report.triangles_flipped, static_cast<std::int64_t>(far.triangle_count()));
+}
+
+TEST(Prepare, KeepsTheInputVertexOrderAndMapsInputIndices) {
+  const Mesh ico = make_icosphere(2);
+  const auto prepared = prepare_mesh(ico);
+  for (std::size_t i = 0; i < ico.vertex_count(); ++i) {
+    EXPECT_EQ(prepared.report.original_vertex[i], static_cast<std::int32_t>(i));
+    EXPECT_EQ(prepared.report.vertex_of_input[i], static_cast<std::int32_t>(i));
+  }
+  // A welded duplicate maps to its representative; an unused vertex to -1.
+  auto soup = tetrahedron_soup();
+  soup.positions.push_back({5, 5, 5});     // 4: unused
+  soup.positions.push_back({1, 0, 0});     // 5: duplicate of 1
+  soup.faces[1] = {0, 5, 3};
+  const auto welded = prepare_mesh(soup);
+  EXPECT_EQ(welded.report.vertex_of_input[4], -1);
+  EXPECT_EQ(welded.report.vertex_of_input[5], welded.report.vertex_of_input[1]);
+}
+
+TEST(Prepare, RejectsAWeldToleranceBelowDoublePrecision) {
+  auto soup = tetrahedron_soup();
+  PrepareOptions options;
+  options.weld_tolerance = 1e-300;
+  EXPECT_THROW(prepare_mesh(soup, options), InputError);
+}
+
 TEST(Prepare, RefusesOpenMeshWithCount) {
   auto soup = tetrahedron_soup();
   soup.faces.pop_back();

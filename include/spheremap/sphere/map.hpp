@@ -60,7 +60,8 @@ struct SphereMap {
 
   std::int32_t north = -1, south = -1;
   bool poles_from_options = false;
-  std::string method;  // "poles-and-rings" (the paper's) or "tutte-stereographic" (tiny meshes)
+  std::string method;  // "poles-and-rings" (the paper's) or "refined-poles-and-rings" (poles < 4 edges apart)
+  int refinement_levels = 0;  // midpoint subdivisions mapped instead of the mesh (poles < 4 edges apart)
   std::int32_t pole_graph_distance = 0;  // d_s
   double theta0 = 0;                     // π / d_s
   double mercator_c = 0, ring_z = 1;     // C and Z of the Mercator scaling
@@ -82,8 +83,8 @@ struct SphereMap {
 
 /// Maps `mesh` one-to-one onto the unit sphere.
 /// Preconditions: `mesh` is closed, 2-manifold, connected, genus 0 and oriented outward, as produced by
-/// prepare_mesh; at least 4 vertices. Throws std::invalid_argument if options.poles are out of range
-/// or equal, and MeshRefused if the mesh violates the preconditions in a way detected here.
+/// prepare_mesh; at least 4 vertices. Throws InputError if options.poles are out of range, equal, or
+/// fewer than 3 edges apart, and MeshRefused if the mesh has fewer than 4 vertices.
 /// The result is always returned, certified or not: check result.certificate.certified().
 SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options = {});
 

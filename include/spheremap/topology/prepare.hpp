@@ -36,8 +36,12 @@ struct PrepareReport {
   std::int64_t component_kept = 0;
   std::int64_t triangles_flipped = 0;  // re-oriented for consistency or to face outward
   int genus = 0;
-  /// original_vertex[i] = index in the input file of the vertex that became vertex i.
+  /// original_vertex[i] = index in the input file of the vertex that became vertex i (vertices keep
+  /// their input order).
   std::vector<std::int32_t> original_vertex;
+  /// vertex_of_input[j] = the vertex that input vertex j became (after welding), or -1 if it was dropped
+  /// (unreferenced, or not in the kept component).
+  std::vector<std::int32_t> vertex_of_input;
 };
 
 struct PreparedMesh {
@@ -51,7 +55,8 @@ struct PreparedMesh {
 /// options.component says which), orientability, genus. Orients every triangle consistently and
 /// outward (positive enclosed volume).
 /// Throws MeshRefused (exit code 2) naming options.source_name, the problem, how many and the fix.
-/// Throws InputError if the soup has no faces or an index out of range.
+/// Throws InputError if the soup has no faces, an index out of range, a non-finite coordinate, or a weld
+/// tolerance below the precision of the coordinates.
 PreparedMesh prepare_mesh(const PolygonSoup& soup, const PrepareOptions& options = {});
 
 /// Same checks for an already triangulated mesh (attributes are carried along).
