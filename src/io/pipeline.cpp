@@ -133,6 +133,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"genus", prep.genus}}},
       {"map",
        {{"method", map.method},
+        {"refinement_levels", map.refinement_levels},
         {"north_pole", map.north},
         {"south_pole", map.south},
         {"pole_graph_distance", map.pole_graph_distance},
