@@ -58,24 +58,30 @@ MapOptions map_options_for(const PreparedMesh& prepared, const MapJobOptions& op
 
 }  // namespace
 
-MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  const PolygonSoup soup = read_polygon_soup(input);
-  const double read_seconds = seconds_since(start);
-  MapJobOptions named = options;
-  if (named.prepare.source_name == "mesh") named.prepare.source_name = input.string();
-  const auto prepare_start = std::chrono::steady_clock::now();
-  PreparedMesh prepared = prepare_mesh(soup, named.prepare);
-  const double prepare_seconds = seconds_since(prepare_start);
-  MapJobResult result;
-  result.input = input;
-  result.read_seconds = read_seconds;
-  result.prepare_seconds = prepare_seconds;
-  result.prepared = std::move(prepared);
-  result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, named.prepare.source_name));
+namespace {
+
+// The part of a job after preparation: the map and its measurements.
+void map_and_measure(MapJobResult& result, const MapJobOptions& options, const std::string& name) {
+  result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, name));
   const auto metrics_start = std::chrono::steady_clock::now();
   result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
   result.metrics_seconds = seconds_since(metrics_start);
+}
+
+}  // namespace
+
+MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
+  MapJobResult result;
+  result.input = input;
+  const auto start = std::chrono::steady_clock::now();
+  const PolygonSoup soup = read_polygon_soup(input);
+  result.read_seconds = seconds_since(start);
+  MapJobOptions named = options;
+  if (named.prepare.source_name == "mesh") named.prepare.source_name = input.string();
+  const auto prepare_start = std::chrono::steady_clock::now();
+  result.prepared = prepare_mesh(soup, named.prepare);
+  result.prepare_seconds = seconds_since(prepare_start);
+  map_and_measure(result, options, named.prepare.source_name);
   return result;
 }
 
@@ -87,10 +93,7 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
   const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(mesh, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
-  result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, name));
-  const auto metrics_start = std::chrono::steady_clock::now();
-  result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
-  result.metrics_seconds = seconds_since(metrics_start);
+  map_and_measure(result, options, name);
   return result;
 }
 
