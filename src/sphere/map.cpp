@@ -345,7 +345,11 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     MapOptions inner = options;
     inner.poles = std::make_pair(north, inner_south);
     const SphereMap refined_map = map_to_sphere(refined, inner);
-    sphere.assign(refined_map.sphere.begin(), refined_map.sphere.begin() + n);
+    // Back to the inner map's pole-aligned frame: θ, φ and the superposition below are taken from there.
+    const auto& r = refined_map.superposition.rotation;
+    const std::array<double, 9> undo{r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]};
+    sphere.resize(n);
+    for (std::int32_t v = 0; v < n; ++v) sphere[v] = rotate(undo, refined_map.sphere[v]);
     result.solver_used = refined_map.solver_used;
     result.theta0 = refined_map.theta0;
     result.mercator_c = refined_map.mercator_c;
