@@ -1,0 +1,79 @@
+// From a structure file to atoms with radii (stage: molecule).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "spheremap/mesh.hpp"
+
+namespace spheremap {
+
+struct Atom {
+  Vec3 position{};
+  double radius = 0;  // Å
+  double charge = 0;  // from PQR files; 0 otherwise
+  std::int32_t serial = 0;
+  std::string name;          // atom name, e.g. "CA"
+  std::string element;       // upper case, e.g. "C", "FE"
+  std::string residue_name;  // e.g. "LYS", "HOH"
+  std::int32_t residue_number = 0;
+  char insertion_code = ' ';
+  std::string chain;
+  std::int32_t model = 1;  // model number as written in the file
+  bool hetero = false;     // HETATM record
+};
+
+struct StructureOptions {
+  /// Which model to read: 1 = the first in the file (the default), N = the N-th.
+  int model = 1;
+  /// Chains to keep (by name); empty = all.
+  std::vector<std::string> chains;
+  bool keep_hydrogens = false;
+  bool keep_waters = false;
+  bool keep_hetero = true;  // ligands, ions and other HETATM groups that are not water
+  /// Element -> radius (Å) replacing the Bondi table, e.g. from load_radius_table. Ignored for PQR files,
+  /// whose radius column is used.
+  std::optional<std::map<std::string, double>> radii;
+};
+
+struct StructureReport {
+  std::int64_t models_in_file = 0;
+  std::int64_t atoms_in_model = 0;
+  std::int64_t hydrogens_removed = 0;
+  std::int64_t waters_removed = 0;
+  std::int64_t hetero_removed = 0;
+  std::int64_t other_chains_removed = 0;
+  std::int64_t alternate_locations_removed = 0;  // atoms of the less occupied alternate conformations
+  std::vector<std::string> warnings;             // e.g. unknown elements and the radius used
+};
+
+struct Molecule {
+  std::vector<Atom> atoms;
+  StructureReport report;
+};
+
+/// Reads PDB, mmCIF (both optionally .gz) through gemmi, or PQR (radius and charge columns), chosen by
+/// extension (.pdb .ent .cif .mmcif .pqr, with an optional .gz). Keeps, by default, the first model,
+/// the most occupied alternate location of each residue (ties: the first letter), no hydrogens, no
+/// waters, all other HETATM groups and all chains; radii from Bondi (1964) per element unless
+/// options.radii or the PQR file say otherwise; unknown elements get kUnknownElementRadius and a
+/// warning naming them.
+/// Throws InputError naming the file, the problem and the fix when the file is missing, unreadable,
+/// empty, not a structure, has a non-finite or absurd coordinate (beyond ±1e5 Å), has fewer than two
+/// atoms after filtering, or the model / chains asked for do not exist.
+Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options = {});
+
+inline constexpr double kUnknownElementRadius = 1.8;
+
+/// Bondi (1964) van der Waals radius of an element symbol (any case), if tabulated.
+std::optional<double> bondi_radius(const std::string& element);
+
+/// Reads a radius table: one "ELEMENT RADIUS" pair per line, '#' starts a comment.
+/// Throws InputError naming the file and line on a malformed line or a radius outside (0, 10] Å.
+std::map<std::string, double> load_radius_table(const std::filesystem::path& path);
+
+}  // namespace spheremap

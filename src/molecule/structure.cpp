@@ -1,0 +1,342 @@
+// The only translation unit that includes gemmi (it is header-only and slow to compile).
+#include <gemmi/gz.hpp>
+#include <gemmi/mmread.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "spheremap/error.hpp"
+#include "spheremap/molecule/structure.hpp"
+
+namespace spheremap {
+namespace {
+
+constexpr double kAbsurdCoordinate = 1e5;  // Å; no deposited structure comes close
+
+std::string upper(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
+  return text;
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  if (upper(p.extension().string()) == ".GZ") p = p.stem();
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool is_water_name(const std::string& residue) {
+  static const std::set<std::string> kWater = {"HOH", "WAT", "H2O", "DOD", "D2O", "TIP", "TIP3", "SOL", "SPC"};
+  return kWater.count(upper(residue)) > 0;
+}
+
+// An atom as read, before filtering.
+struct RawAtom {
+  Atom atom;
+  char altloc = 0;
+  double occupancy = 1;
+  bool water = false;
+  bool hydrogen = false;
+  std::string residue_key;  // chain + number + insertion code + name: one residue
+};
+
+// mmCIF files written by other programs (PyMOL's 1bna.cif) may lack the columns gemmi's structure
+// reader needs (auth_seq_id); read the _atom_site table directly with gemmi's CIF parser.
+std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int model, std::int64_t& models_in_file) {
+  gemmi::cif::Document document = gemmi::cif::read(gemmi::MaybeGzipped(path.string()));
+  if (document.blocks.empty()) throw InputError(fmt::format("{}: the mmCIF file has no data block", path.string()));
+  auto table = document.blocks.front().find(
+      "_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?group_PDB", "?id", "?type_symbol", "?label_atom_id",
+                      "?label_alt_id", "?label_comp_id", "?auth_asym_id", "?label_asym_id", "?auth_seq_id",
+                      "?label_seq_id", "?pdbx_PDB_ins_code", "?occupancy", "?pdbx_PDB_model_num"});
+  if (table.length() == 0) throw InputError(fmt::format("{}: the file contains no atoms (no _atom_site table)", path.string()));
+  std::vector<std::string> model_numbers;
+  for (auto row : table) {
+    const std::string number = row.has2(15) ? row.str(15) : "1";
+    if (std::find(model_numbers.begin(), model_numbers.end(), number) == model_numbers.end()) model_numbers.push_back(number);
+  }
+  models_in_file = static_cast<std::int64_t>(model_numbers.size());
+  if (model < 1 || model > static_cast<int>(model_numbers.size()))
+    throw InputError(fmt::format("{}: --model {} does not exist: the file has {} model(s)", path.string(), model,
+                                 model_numbers.size()));
+  const std::string& wanted = model_numbers[static_cast<std::size_t>(model - 1)];
+  auto text = [&](gemmi::cif::Table::Row& row, int column, const char* fallback) {
+    return row.has2(static_cast<std::size_t>(column)) ? row.str(column) : std::string(fallback);
+  };
+  std::vector<RawAtom> atoms;
+  for (auto row : table) {
+    if ((row.has2(15) ? row.str(15) : "1") != wanted) continue;
+    RawAtom raw;
+    raw.atom.position = {gemmi::cif::as_number(row[0]), gemmi::cif::as_number(row[1]), gemmi::cif::as_number(row[2])};
+    raw.atom.hetero = text(row, 3, "ATOM") == "HETATM";
+    raw.atom.serial = static_cast<std::int32_t>(gemmi::cif::as_number(text(row, 4, "0"), 0));
+    raw.atom.element = upper(text(row, 5, "X"));
+    raw.atom.name = text(row, 6, "X");
+    const std::string altloc = text(row, 7, "");
+    raw.altloc = altloc.empty() ? 0 : altloc[0];
+    raw.atom.residue_name = text(row, 8, "UNK");
+    raw.atom.chain = row.has2(9) ? row.str(9) : text(row, 10, "");
+    raw.atom.residue_number = static_cast<std::int32_t>(
+        gemmi::cif::as_number(row.has2(11) ? row.str(11) : text(row, 12, "0"), 0));
+    const std::string icode = text(row, 13, "");
+    raw.atom.insertion_code = icode.empty() ? ' ' : icode[0];
+    raw.occupancy = gemmi::cif::as_number(text(row, 14, "1"), 1);
+    int model_number = model;
+    std::from_chars(wanted.data(), wanted.data() + wanted.size(), model_number);
+    raw.atom.model = model_number;
+    raw.hydrogen = raw.atom.element == "H" || raw.atom.element == "D";
+    raw.water = is_water_name(raw.atom.residue_name);
+    raw.residue_key = fmt::format("{}|{}|{}|{}", raw.atom.chain, raw.atom.residue_number, raw.atom.insertion_code,
+                                  raw.atom.residue_name);
+    atoms.push_back(std::move(raw));
+  }
+  return atoms;
+}
+
+std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, int model, std::int64_t& models_in_file,
+                                     std::vector<std::string>& warnings) {
+  gemmi::Structure structure;
+  try {
+    structure = gemmi::read_structure(gemmi::MaybeGzipped(path.string()));
+  } catch (const std::exception& first_error) {
+    // Old PDB files carry an ID and line numbers in columns 73-80, where the element and charge are now
+    // (1hpv.pdb of pymol-data, for one): read them again up to column 72, elements then come from names.
+    bool read = false;
+    if (lower_extension(path) == ".pdb" || lower_extension(path) == ".ent") {
+      try {
+        gemmi::PdbReadOptions up_to_72;
+        up_to_72.max_line_length = 72;
+        structure = gemmi::read_pdb(gemmi::MaybeGzipped(path.string()), up_to_72);
+        warnings.push_back(fmt::format("columns 73-80 ignored (old-style PDB: {}); elements taken from atom names",
+                                       first_error.what()));
+        read = true;
+      } catch (const std::exception&) {
+      }
+    }
+    if (!read)
+      throw InputError(fmt::format("{}: cannot read the structure: {}. Check that it is a PDB or mmCIF file and not "
+                                   "truncated",
+                                   path.string(), first_error.what()));
+  }
+  models_in_file = static_cast<std::int64_t>(structure.models.size());
+  if (structure.models.empty() && (lower_extension(path) == ".cif" || lower_extension(path) == ".mmcif"))
+    return read_atom_site_table(path, model, models_in_file);
+  if (structure.models.empty())
+    throw InputError(fmt::format("{}: the file contains no atoms (no model); is it a structure file?", path.string()));
+  if (model < 1 || model > static_cast<int>(structure.models.size()))
+    throw InputError(fmt::format("{}: --model {} does not exist: the file has {} model(s), numbered 1 to {}",
+                                 path.string(), model, structure.models.size(), structure.models.size()));
+  const gemmi::Model& chosen = structure.models[static_cast<std::size_t>(model - 1)];
+  int model_number = model;
+  std::from_chars(chosen.name.data(), chosen.name.data() + chosen.name.size(), model_number);
+  std::vector<RawAtom> atoms;
+  for (const auto& chain : chosen.chains) {
+    for (const auto& residue : chain.residues) {
+      const bool water = residue.is_water() || is_water_name(residue.name);
+      const std::string key = fmt::format("{}|{}|{}|{}", chain.name, residue.seqid.num.value, residue.seqid.icode, residue.name);
+      for (const auto& a : residue.atoms) {
+        RawAtom raw;
+        raw.atom.position = {a.pos.x, a.pos.y, a.pos.z};
+        raw.atom.serial = a.serial;
+        raw.atom.name = a.name;
+        raw.atom.element = upper(a.element.name());
+        raw.atom.residue_name = residue.name;
+        raw.atom.residue_number = residue.seqid.num.value;
+        raw.atom.insertion_code = residue.seqid.icode == '\0' ? ' ' : residue.seqid.icode;
+        raw.atom.chain = chain.name;
+        raw.atom.model = model_number;
+        raw.atom.hetero = residue.het_flag == 'H';
+        raw.altloc = a.altloc;
+        raw.occupancy = a.occ;
+        raw.water = water;
+        raw.hydrogen = a.is_hydrogen();
+        raw.residue_key = key;
+        atoms.push_back(std::move(raw));
+      }
+    }
+  }
+  return atoms;
+}
+
+// PQR (pdb2pqr, APBS): whitespace-separated ATOM/HETATM records whose last five fields are
+// x y z charge radius; the chain column is optional.
+std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot open the file; check the path and permissions", path.string()));
+  std::vector<RawAtom> atoms;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.rfind("ATOM", 0) != 0 && line.rfind("HETATM", 0) != 0) continue;
+    std::istringstream stream(line);
+    std::vector<std::string> fields;
+    for (std::string field; stream >> field;) fields.push_back(field);
+    auto fail = [&] {
+      return InputError(fmt::format("{}:{}: not a PQR atom record (expected 'ATOM serial name residue [chain] number x y "
+                                    "z charge radius'): '{}'",
+                                    path.string(), line_number, line));
+    };
+    if (fields.size() < 10 || fields.size() > 12) throw fail();
+    auto number = [&](const std::string& text) {
+      double value = 0;
+      if (std::from_chars(text.data(), text.data() + text.size(), value).ec != std::errc{}) throw fail();
+      return value;
+    };
+    const auto n = fields.size();
+    RawAtom raw;
+    raw.atom.position = {number(fields[n - 5]), number(fields[n - 4]), number(fields[n - 3])};
+    raw.atom.charge = number(fields[n - 2]);
+    raw.atom.radius = number(fields[n - 1]);
+    if (!(raw.atom.radius >= 0 && raw.atom.radius < 10)) throw fail();
+    raw.atom.serial = static_cast<std::int32_t>(number(fields[1]));
+    raw.atom.name = fields[2];
+    raw.atom.residue_name = fields[3];
+    std::string residue_number = fields[n - 6];
+    raw.atom.chain = n - 6 > 4 ? fields[4] : "";
+    if (!residue_number.empty() && std::isalpha(static_cast<unsigned char>(residue_number.back()))) {
+      raw.atom.insertion_code = residue_number.back();
+      residue_number.pop_back();
+    }
+    raw.atom.residue_number = static_cast<std::int32_t>(number(residue_number));
+    raw.atom.hetero = fields[0] == "HETATM";
+    // PQR has no element column: ions are named after their element (residue FE, atom FE), other atoms
+    // start with their element letter after any digits (1HG1 is a hydrogen).
+    const std::string name = upper(raw.atom.name);
+    if (name == upper(raw.atom.residue_name) && name.size() <= 2) {
+      raw.atom.element = name;
+    } else {
+      const auto first = name.find_first_not_of("0123456789");
+      raw.atom.element = first == std::string::npos ? "X" : name.substr(first, 1);
+    }
+    raw.hydrogen = raw.atom.element == "H" || raw.atom.element == "D";
+    raw.water = is_water_name(raw.atom.residue_name);
+    raw.residue_key = fmt::format("{}|{}|{}|{}", raw.atom.chain, raw.atom.residue_number, raw.atom.insertion_code,
+                                  raw.atom.residue_name);
+    atoms.push_back(std::move(raw));
+  }
+  return atoms;
+}
+
+}  // namespace
+
+Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options) {
+  if (!std::filesystem::exists(path))
+    throw InputError(fmt::format("{}: no such file; check the path", path.string()));
+  if (std::filesystem::is_empty(path)) throw InputError(fmt::format("{}: the file is empty", path.string()));
+  const std::string extension = lower_extension(path);
+  const bool pqr = extension == ".pqr";
+  if (!pqr && extension != ".pdb" && extension != ".ent" && extension != ".cif" && extension != ".mmcif")
+    throw InputError(fmt::format("{}: unknown structure format '{}'; spheremap reads .pdb, .ent, .cif, .mmcif (also "
+                                 ".gz) and .pqr",
+                                 path.string(), extension));
+  Molecule molecule;
+  StructureReport& report = molecule.report;
+  std::vector<RawAtom> raw;
+  if (pqr) {
+    raw = read_pqr(path);
+    report.models_in_file = 1;
+    if (options.model != 1)
+      throw InputError(fmt::format("{}: --model {} does not exist: PQR files hold one model", path.string(), options.model));
+  } else {
+    raw = read_with_gemmi(path, options.model, report.models_in_file, report.warnings);
+  }
+  report.atoms_in_model = static_cast<std::int64_t>(raw.size());
+  if (raw.empty()) throw InputError(fmt::format("{}: the file contains no atoms", path.string()));
+
+  if (!options.chains.empty()) {
+    std::set<std::string> present;
+    for (const auto& a : raw) present.insert(a.atom.chain);
+    for (const auto& wanted : options.chains)
+      if (!present.count(wanted))
+        throw InputError(fmt::format("{}: chain '{}' does not exist; the chains are: {}", path.string(), wanted,
+                                     fmt::join(present, ", ")));
+  }
+
+  // The most occupied alternate location of each residue (mean occupancy of its atoms; ties: first letter).
+  std::map<std::string, std::map<char, std::pair<double, int>>> occupancy_by_residue;
+  for (const auto& a : raw) {
+    if (a.altloc == 0 || a.altloc == ' ') continue;
+    auto& entry = occupancy_by_residue[a.residue_key][a.altloc];
+    entry.first += a.occupancy;
+    entry.second += 1;
+  }
+  std::map<std::string, char> kept_altloc;
+  for (const auto& [key, letters] : occupancy_by_residue) {
+    char best = 0;
+    double best_mean = -1;
+    for (const auto& [letter, sum_count] : letters) {
+      const double mean = sum_count.first / sum_count.second;
+      if (mean > best_mean) best_mean = mean, best = letter;
+    }
+    kept_altloc[key] = best;
+  }
+
+  std::map<std::string, std::vector<std::string>> unknown_radius;  // element -> atom descriptions
+  for (auto& a : raw) {
+    if (a.altloc != 0 && a.altloc != ' ' && kept_altloc[a.residue_key] != a.altloc) {
+      ++report.alternate_locations_removed;
+      continue;
+    }
+    if (!options.chains.empty() && std::find(options.chains.begin(), options.chains.end(), a.atom.chain) == options.chains.end()) {
+      ++report.other_chains_removed;
+      continue;
+    }
+    if (a.hydrogen && !options.keep_hydrogens) {
+      ++report.hydrogens_removed;
+      continue;
+    }
+    if (a.water && !options.keep_waters) {
+      ++report.waters_removed;
+      continue;
+    }
+    if (a.atom.hetero && !a.water && !options.keep_hetero) {
+      ++report.hetero_removed;
+      continue;
+    }
+    const auto& p = a.atom.position;
+    for (double c : p) {
+      if (!std::isfinite(c) || std::abs(c) > kAbsurdCoordinate)
+        throw InputError(fmt::format("{}: atom {} ({} {}{}) has the coordinate {}, which is not a real position; fix "
+                                     "the file",
+                                     path.string(), a.atom.serial, a.atom.name, a.atom.residue_name, a.atom.residue_number, c));
+    }
+    if (!pqr) {
+      std::optional<double> radius;
+      if (options.radii) {
+        const auto it = options.radii->find(a.atom.element);
+        if (it != options.radii->end()) radius = it->second;
+      } else {
+        radius = bondi_radius(a.atom.element);
+      }
+      if (!radius) {
+        if (unknown_radius[a.atom.element].size() < 5)
+          unknown_radius[a.atom.element].push_back(
+              fmt::format("{} {} {}{}", a.atom.name, a.atom.residue_name, a.atom.chain, a.atom.residue_number));
+        else if (unknown_radius[a.atom.element].size() == 5)
+          unknown_radius[a.atom.element].push_back("...");
+        radius = kUnknownElementRadius;
+      }
+      a.atom.radius = *radius;
+    }
+    molecule.atoms.push_back(std::move(a.atom));
+  }
+  for (const auto& [element, atoms] : unknown_radius)
+    report.warnings.push_back(fmt::format("no radius for element '{}' ({}): {} Å used", element, fmt::join(atoms, "; "),
+                                          kUnknownElementRadius));
+  if (molecule.atoms.size() < 2)
+    throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
+                                 "at least two. Check --chains, --model, or keep more atoms",
+                                 path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups"));
+  return molecule;
+}
+
+}  // namespace spheremap

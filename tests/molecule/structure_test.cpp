@@ -1,0 +1,215 @@
+#include "spheremap/molecule/structure.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "spheremap/error.hpp"
+
+namespace spheremap {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Structure : public testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() / ("spheremap-structure-" + std::to_string(::getpid()) + "-" +
+                                           testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(folder_ / name, std::ios::binary) << text;
+    return folder_ / name;
+  }
+  fs::path folder_;
+};
+
+// A PDB record in fixed columns.
+std::string record(const char* kind, int serial, const char* name, char altloc, const char* residue, char chain,
+                   int number, double x, double y, double z, double occupancy, const char* element) {
+  return fmt::format("{:<6}{:>5} {:<4}{}{:>3} {}{:>4}    {:>8.3f}{:>8.3f}{:>8.3f}{:>6.2f}{:>6.2f}          {:>2}\n", kind,
+                     serial, name, altloc, residue, chain, number, x, y, z, occupancy, 0.0, element);
+}
+
+std::string small_pdb() {
+  return record("ATOM", 1, " N", ' ', "ALA", 'A', 1, 11.104, 6.134, -6.504, 1, "N") +
+         record("ATOM", 2, " CA", 'A', "ALA", 'A', 1, 11.639, 6.071, -5.147, 0.3, "C") +
+         record("ATOM", 3, " CA", 'B', "ALA", 'A', 1, 11.700, 6.000, -5.100, 0.7, "C") +
+         record("ATOM", 4, " H", ' ', "ALA", 'A', 1, 10.500, 6.500, -6.900, 1, "H") +
+         record("ATOM", 5, " C", ' ', "GLY", 'B', 2, 12.000, 7.000, -4.000, 1, "C") +
+         record("HETATM", 6, "FE", ' ', "HEM", 'A', 3, 10.000, 5.000, -4.000, 1, "FE") +
+         record("HETATM", 7, " O", ' ', "HOH", 'A', 4, 9.000, 5.000, -4.000, 1, "O") + "END\n";
+}
+
+TEST(Radii, BondiTableAndCustomTables) {
+  EXPECT_DOUBLE_EQ(*bondi_radius("C"), 1.70);
+  EXPECT_DOUBLE_EQ(*bondi_radius("cl"), 1.75);
+  EXPECT_DOUBLE_EQ(*bondi_radius("O"), 1.52);
+  EXPECT_FALSE(bondi_radius("FE").has_value());
+}
+
+TEST_F(Structure, DefaultsKeepTheMostOccupiedAltlocAndDropHydrogensAndWaters) {
+  const auto molecule = read_structure(write("small.pdb", small_pdb()));
+  ASSERT_EQ(molecule.atoms.size(), 4u);  // N, CA (altloc B), C, FE
+  EXPECT_EQ(molecule.report.alternate_locations_removed, 1);
+  EXPECT_EQ(molecule.report.hydrogens_removed, 1);
+  EXPECT_EQ(molecule.report.waters_removed, 1);
+  const Atom& ca = molecule.atoms[1];
+  EXPECT_EQ(ca.name, "CA");
+  EXPECT_EQ(ca.serial, 3);
+  EXPECT_DOUBLE_EQ(ca.position[0], 11.700);
+  EXPECT_DOUBLE_EQ(ca.radius, 1.70);
+  EXPECT_EQ(ca.residue_name, "ALA");
+  EXPECT_EQ(ca.residue_number, 1);
+  EXPECT_EQ(ca.chain, "A");
+  EXPECT_EQ(ca.element, "C");
+  const Atom& iron = molecule.atoms[3];
+  EXPECT_TRUE(iron.hetero);
+  EXPECT_DOUBLE_EQ(iron.radius, kUnknownElementRadius);
+  ASSERT_EQ(molecule.report.warnings.size(), 1u);
+  EXPECT_NE(molecule.report.warnings[0].find("'FE'"), std::string::npos) << molecule.report.warnings[0];
+}
+
+TEST_F(Structure, OptionsSelectChainsAndKeepWhatIsAsked) {
+  StructureOptions options;
+  options.chains = {"A"};
+  options.keep_hydrogens = true;
+  options.keep_waters = true;
+  options.keep_hetero = false;
+  const auto molecule = read_structure(write("small.pdb", small_pdb()), options);
+  // N, CA(B), H, HOH O; GLY is chain B, FE is HETATM.
+  EXPECT_EQ(molecule.atoms.size(), 4u);
+  EXPECT_EQ(molecule.report.other_chains_removed, 1);
+  EXPECT_EQ(molecule.report.hetero_removed, 1);
+  options.chains = {"Z"};
+  try {
+    read_structure(folder_ / "small.pdb", options);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("chain 'Z' does not exist; the chains are: A, B"), std::string::npos) << e.what();
+  }
+  StructureOptions radii;
+  radii.radii = std::map<std::string, double>{{"C", 2.0}, {"N", 1.5}, {"FE", 1.3}};
+  const auto custom = read_structure(folder_ / "small.pdb", radii);
+  EXPECT_DOUBLE_EQ(custom.atoms[1].radius, 2.0);
+  EXPECT_DOUBLE_EQ(custom.atoms[3].radius, 1.3);
+  EXPECT_TRUE(custom.report.warnings.empty());
+}
+
+TEST_F(Structure, ReadsPqrWithAndWithoutChains) {
+  const auto path = write("small.pqr",
+                          "REMARK   1 PQR file\n"
+                          "ATOM      1  N   LYS A   1      -8.655   5.770   8.371  0.0966 1.8240\n"
+                          "ATOM      2  HZ1 LYS A   1      -9.000   5.000   8.000  0.3400 0.6000\n"
+                          "ATOM      3  CA  LYS    52A     -8.000   6.000   8.000  0.1000 1.9080\n"
+                          "HETATM    4 ZN   ZN     90      -7.000   6.000   7.000  2.0000 1.3900\n");
+  const auto molecule = read_structure(path);
+  ASSERT_EQ(molecule.atoms.size(), 3u);
+  EXPECT_DOUBLE_EQ(molecule.atoms[0].charge, 0.0966);
+  EXPECT_DOUBLE_EQ(molecule.atoms[0].radius, 1.8240);
+  EXPECT_EQ(molecule.atoms[0].chain, "A");
+  EXPECT_EQ(molecule.atoms[1].residue_number, 52);
+  EXPECT_EQ(molecule.atoms[1].insertion_code, 'A');
+  EXPECT_EQ(molecule.atoms[1].chain, "");
+  EXPECT_EQ(molecule.atoms[2].element, "ZN");
+  EXPECT_EQ(molecule.report.hydrogens_removed, 1);
+  const auto broken = write("broken.pqr", "ATOM      1  N   LYS A   1      -8.655   5.770   8.371\n");
+  EXPECT_THROW(read_structure(broken), InputError);
+}
+
+TEST_F(Structure, BadInputsGiveAClearError) {
+  auto message = [&](const fs::path& path) -> std::string {
+    try {
+      read_structure(path);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_NE(message(folder_ / "missing.pdb").find("no such file"), std::string::npos);
+  EXPECT_NE(message(write("empty.pdb", "")).find("empty"), std::string::npos);
+  EXPECT_NE(message(write("x.xyz", "1\n")).find("unknown structure format"), std::string::npos);
+  EXPECT_NE(message(write("garbage.cif", std::string("\x01\x02\x03\xff data_ loop_", 17))).find("garbage.cif"),
+            std::string::npos);
+  EXPECT_NE(message(write("one.pdb", record("ATOM", 1, " CA", ' ', "ALA", 'A', 1, 0, 0, 0, 1, "C"))).find("at least two"),
+            std::string::npos);
+  EXPECT_NE(message(write("far.pdb", record("ATOM", 1, " CA", ' ', "ALA", 'A', 1, 0, 0, 0, 1, "C") +
+                                         record("ATOM", 2, " CB", ' ', "ALA", 'A', 1, 9999999, 0, 0, 1, "C")))
+                .find("not a real position"),
+            std::string::npos);
+  EXPECT_NE(message(write("water.pdb", record("HETATM", 1, " O", ' ', "HOH", 'A', 1, 0, 0, 0, 1, "O") +
+                                           record("HETATM", 2, " O", ' ', "HOH", 'A', 2, 3, 0, 0, 1, "O")))
+                .find("left after filtering"),
+            std::string::npos);
+}
+
+TEST_F(Structure, RadiusTableFile) {
+  const auto table = load_radius_table(write("radii.txt", "# element radius\nC 1.7\nfe 1.3  # iron\n\n"));
+  EXPECT_DOUBLE_EQ(table.at("FE"), 1.3);
+  try {
+    load_radius_table(write("bad.txt", "C 1.7\nN\n"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.txt:2"), std::string::npos) << e.what();
+  }
+}
+
+const fs::path kPdb = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb";
+
+TEST(DataStructure, SharedStructuresReadWithTheDefaults) {
+  if (!fs::exists(kPdb)) GTEST_SKIP() << "shared data not found: " << kPdb << " (skipped on purpose)";
+  // 1crn: 327 heavy atoms, no waters, no altlocs.
+  EXPECT_EQ(read_structure(kPdb / "misc" / "1crn.cif").atoms.size(), 327u);
+  // 3lzt: 1398 atoms, 250 of them water, 259 with an altloc flag, no hydrogens.
+  const auto lysozyme = read_structure(kPdb / "paper77" / "3lzt.pdb");
+  EXPECT_EQ(static_cast<std::int64_t>(lysozyme.atoms.size()) + lysozyme.report.waters_removed +
+                lysozyme.report.alternate_locations_removed,
+            1398);
+  EXPECT_GT(lysozyme.report.alternate_locations_removed, 0);
+  for (const auto& a : lysozyme.atoms) ASSERT_NE(a.residue_name, "HOH");
+  // 1bna (written by PyMOL, read through the _atom_site table): 566 atoms, 80 of them water.
+  const auto dna = read_structure(kPdb / "misc" / "1bna.cif");
+  EXPECT_EQ(static_cast<std::int64_t>(dna.atoms.size()) + dna.report.waters_removed, 566);
+  EXPECT_EQ(dna.report.waters_removed, 80);
+  // 1hpv (old PDB with line numbers in columns 73-80): read up to column 72, with a warning.
+  const auto protease = read_structure(kPdb / "misc" / "1hpv.pdb");
+  EXPECT_FALSE(protease.report.warnings.empty());
+  for (const auto& a : protease.atoms) ASSERT_TRUE(bondi_radius(a.element) || a.radius == kUnknownElementRadius);
+  // 1brf: 375 hydrogens.
+  EXPECT_EQ(read_structure(kPdb / "paper77" / "1brf.pdb").report.hydrogens_removed, 375);
+  // NMR ensemble: 20 models.
+  StructureOptions second;
+  second.model = 2;
+  const auto model2 = read_structure(kPdb / "misc" / "1tap.pdb", second);
+  EXPECT_EQ(model2.report.models_in_file, 20);
+  EXPECT_EQ(model2.atoms.front().model, 2);
+  second.model = 21;
+  EXPECT_THROW(read_structure(kPdb / "misc" / "1tap.pdb", second), InputError);
+}
+
+TEST(DataStructure, EveryStructureInTheSharedSetReads) {
+  if (!fs::exists(kPdb)) GTEST_SKIP() << "shared data not found: " << kPdb << " (skipped on purpose)";
+  int files = 0;
+  for (const auto* folder : {"paper77", "misc"}) {
+    for (const auto& entry : fs::directory_iterator(kPdb / folder)) {
+      ++files;
+      const auto molecule = read_structure(entry.path());
+      EXPECT_GE(molecule.atoms.size(), 2u) << entry.path();
+      for (const auto& a : molecule.atoms) {
+        ASSERT_GT(a.radius, 0) << entry.path();
+        ASSERT_NE(a.element, "H") << entry.path();
+      }
+    }
+  }
+  EXPECT_EQ(files, 88);
+}
+
+}  // namespace
+}  // namespace spheremap
