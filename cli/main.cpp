@@ -1,5 +1,6 @@
 // The spheremap command line: a thin layer over the library (see include/spheremap/pipeline.hpp).
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -126,10 +127,12 @@ int main(int argc, char** argv) {
       if (!quiet || !result.map.certificate.certified()) std::cout << spheremap::summary_text(result);
       if (!result.map.certificate.certified()) {
         const auto& c = result.map.certificate;
+        const std::string coverage =
+            std::abs(c.coverage - 1) < 1e-9 ? "" : fmt::format(", and the image covers the sphere {:.6f} times instead of once", c.coverage);
         std::cerr << fmt::format(
-            "spheremap: {}: THE MAP IS NOT CERTIFIED: {} folded and {} collapsed triangles (listed in {}/report.json), "
-            "coverage {:.12f} (must be 1). It was written anyway; do not trust it.\n",
-            input, c.folded, c.collapsed, output, c.coverage);
+            "spheremap: {}: THE MAP IS NOT CERTIFIED: {} folded and {} collapsed triangles (listed in {}/report.json){}. "
+            "It was written anyway; do not trust it.\n",
+            input, c.folded, c.collapsed, output, coverage);
         return static_cast<int>(spheremap::ExitCode::kNotCertified);
       }
     }

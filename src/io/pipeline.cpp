@@ -147,6 +147,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"south_ring_size", map.south_ring_size},
         {"split_edges", splits},
         {"meridian_length", map.meridian.size()},
+        {"meridian_method", map.meridian_method},
         {"solver", map.solver_used},
         {"gauss_seidel_sweeps", map.gauss_seidel_sweeps},
         {"gauss_seidel_converged", map.gauss_seidel_converged},

@@ -222,6 +222,7 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
     for (std::int32_t k = 0; k < unknowns; ++k) order.indices()[permutation[k]] = k;
     const Eigen::SparseMatrix<double> permuted = order * matrix * order.transpose();
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky;
+    cholesky.cholmod().print = 0;  // an indefinite matrix (cotangent weights) is expected: we fall back to LU
     cholesky.cholmod().nmethods = 1;
     cholesky.cholmod().method[0].ordering = CHOLMOD_NATURAL;
     cholesky.compute(permuted);

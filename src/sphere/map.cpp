@@ -109,6 +109,7 @@ void split_dividing_edges(WorkingMesh& work, std::int32_t pole, char tag, std::v
 struct PlanarCoordinates {
   std::vector<double> z, phi;
   std::vector<std::int32_t> meridian;
+  bool meridian_by_descent = true;
   detail::SolveStats z_stats, phi_stats;
 };
 
@@ -185,8 +186,36 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
       break;
     }
   }
-  if (planar.meridian.empty())
-    throw std::runtime_error("no boundary meridian: steepest descent stalled from every northern ring vertex");
+  if (planar.meridian.empty()) {
+    // Only with weights that can be negative (cotangent) can z have interior minima where every descent
+    // stalls. A shortest path from ring to ring has no chord either (a chord would shorten it); the
+    // certificate judges the map it leads to.
+    planar.meridian_by_descent = false;
+    std::vector<std::int32_t> previous(n, -1);
+    std::vector<std::int32_t> queue;
+    std::vector<std::int32_t> sources(north_ring.begin(), north_ring.end());
+    std::sort(sources.begin(), sources.end());
+    for (auto v : sources) previous[v] = v, queue.push_back(v);
+    std::int32_t reached = -1;
+    for (std::size_t head = 0; head < queue.size() && reached < 0; ++head) {
+      const auto v = queue[head];
+      for (auto w : rings.ring(v)) {
+        if (w == north || w == south || previous[w] >= 0) continue;
+        previous[w] = v;
+        if (on_south_ring[w]) {
+          reached = w;
+          break;
+        }
+        queue.push_back(w);
+      }
+    }
+    if (reached < 0) throw std::logic_error("no path between the circumpolar rings");
+    for (auto v = reached;; v = previous[v]) {
+      planar.meridian.push_back(v);
+      if (previous[v] == v) break;
+    }
+    std::reverse(planar.meridian.begin(), planar.meridian.end());
+  }
 
   // φ: rings uniformly spaced, meridian at 0 (seen from the east) and 2π (from the west).
   detail::HarmonicProblem phi_problem{&rings, &weights, &work.positions, std::vector<char>(n, 0),
@@ -460,7 +489,10 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     if (phi >= 2 * kPi) phi = 0;  // -0 and tiny negatives round up to 2π
     result.phi[v] = phi;
   }
-  if (result.method == "poles-and-rings") result.meridian = planar.meridian;
+  if (result.method == "poles-and-rings") {
+    result.meridian = planar.meridian;
+    result.meridian_method = planar.meridian_by_descent ? "steepest-descent" : "shortest-path";
+  }
   result.sphere = std::move(sphere);
   return result;
 }

@@ -68,6 +68,9 @@ struct SphereMap {
   std::int32_t north_ring_size = 0, south_ring_size = 0;
   std::vector<SplitEdge> split_edges;
   std::vector<std::int32_t> meridian;  // boundary meridian, north ring to south ring
+  /// "steepest-descent" (the paper's), or "shortest-path" when every descent stalls at an interior
+  /// minimum of z, which only weights that can be negative (cotangent) allow.
+  std::string meridian_method;
 
   std::string solver_used;  // e.g. "cholmod-llt", "umfpack-lu", "gauss-seidel"
   std::int64_t gauss_seidel_sweeps = 0;
