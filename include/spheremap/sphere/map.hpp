@@ -27,7 +27,8 @@ enum class Solver {
 struct MapOptions {
   Weights weights = Weights::kUniform;
   Solver solver = Solver::kDirect;
-  /// Pole vertices (north, south); by default the two vertices farthest apart.
+  /// Pole vertices (north, south) as indices of the mapped mesh; by default the two vertices farthest
+  /// apart. (run_map_job takes them as indices of the input file and translates them.)
   std::optional<std::pair<std::int32_t, std::int32_t>> poles;
   /// Repair what the planar guarantee does not cover (folds and collapse on the sphere): reweighting
   /// of the harmonic weights (positive, so the planar map stays one-to-one) against collapse, then local
@@ -86,8 +87,9 @@ struct SphereMap {
 
 /// Maps `mesh` one-to-one onto the unit sphere.
 /// Preconditions: `mesh` is closed, 2-manifold, connected, genus 0 and oriented outward, as produced by
-/// prepare_mesh; at least 4 vertices. Throws InputError if options.poles are out of range, equal, or
-/// fewer than 3 edges apart, and MeshRefused if the mesh has fewer than 4 vertices.
+/// prepare_mesh; at least 4 vertices. options.poles, if set, are indices of `mesh`'s vertices.
+/// Throws InputError if options.poles are out of range, equal, or joined by an edge, and MeshRefused if
+/// the mesh has fewer than 4 vertices.
 /// The result is always returned, certified or not: check result.certificate.certified().
 SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options = {});
 
