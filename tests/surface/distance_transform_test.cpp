@@ -1,0 +1,42 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "spheremap/surface/grid.hpp"
+
+namespace spheremap {
+namespace {
+
+TEST(DistanceTransform, MatchesBruteForceOnRandomTargets) {
+  std::mt19937 random(3);
+  for (int trial = 0; trial < 5; ++trial) {
+    Grid3<std::uint8_t> targets;
+    targets.size = {7 + trial, 5 + 2 * trial, 6};
+    targets.values.assign(static_cast<std::size_t>(targets.count()), 0);
+    for (auto& t : targets.values) t = random() % 13 == 0;
+    const auto d = squared_distance_transform(targets);
+    for (std::int64_t k = 0; k < targets.size[2]; ++k)
+      for (std::int64_t j = 0; j < targets.size[1]; ++j)
+        for (std::int64_t i = 0; i < targets.size[0]; ++i) {
+          double best = std::numeric_limits<double>::infinity();
+          for (std::int64_t c = 0; c < targets.size[2]; ++c)
+            for (std::int64_t b = 0; b < targets.size[1]; ++b)
+              for (std::int64_t a = 0; a < targets.size[0]; ++a)
+                if (targets.values[targets.index(a, b, c)])
+                  best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)));
+          ASSERT_EQ(d.values[d.index(i, j, k)], best) << trial << " " << i << " " << j << " " << k;
+        }
+  }
+}
+
+TEST(DistanceTransform, NoTargetGivesInfinity) {
+  Grid3<std::uint8_t> empty;
+  empty.size = {3, 3, 3};
+  empty.values.assign(27, 0);
+  for (double d : squared_distance_transform(empty).values) EXPECT_TRUE(std::isinf(d));
+}
+
+}  // namespace
+}  // namespace spheremap
