@@ -1,0 +1,19 @@
+// Iso-surfaces of sampled fields as closed 2-manifold triangle meshes (stage: surface).
+#pragma once
+
+#include "spheremap/mesh.hpp"
+#include "spheremap/surface/grid.hpp"
+
+namespace spheremap {
+
+/// The surface field == level of the piecewise-linear interpolant of `field` on the Freudenthal
+/// subdivision of each grid cell into six tetrahedra (marching tetrahedra). Every cell uses the same
+/// diagonals, so neighbouring cells agree on shared faces and no case is ambiguous: with the samples
+/// classified strictly (inside: value > level), the result is a closed, consistently oriented 2-manifold
+/// whenever every sample on the grid's outer layer is outside. Triangles face outward (towards
+/// decreasing values). Vertices sit on grid edges; interpolation parameters are kept in
+/// [1e-6, 1 - 1e-6] so that no two vertices coincide. Vertices are shared, in a deterministic order.
+/// Throws std::invalid_argument if a sample of the outer layer is inside or the grid is smaller than 2³.
+Mesh contour_isosurface(const Grid3<double>& field, double level);
+
+}  // namespace spheremap

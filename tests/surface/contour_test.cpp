@@ -1,0 +1,95 @@
+#include "spheremap/surface/contour.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
+
+#include "spheremap/geometry/vec.hpp"
+#include "spheremap/sphere/map.hpp"
+#include "spheremap/topology/connectivity.hpp"
+#include "spheremap/topology/prepare.hpp"
+
+namespace spheremap {
+namespace {
+
+Grid3<double> sample(std::int64_t n, double spacing, const Vec3& origin, auto&& function) {
+  Grid3<double> grid;
+  grid.size = {n, n, n};
+  grid.spacing = spacing;
+  grid.origin = origin;
+  grid.values.resize(static_cast<std::size_t>(grid.count()));
+  for (std::int64_t k = 0; k < n; ++k)
+    for (std::int64_t j = 0; j < n; ++j)
+      for (std::int64_t i = 0; i < n; ++i) grid.values[grid.index(i, j, k)] = function(grid.point(i, j, k));
+  return grid;
+}
+
+// Every directed edge once, its reverse once: closed and consistently oriented; fans checked by rings.
+void expect_closed_oriented_manifold(const Mesh& mesh) {
+  std::map<std::pair<std::int32_t, std::int32_t>, int> directed;
+  for (const auto& t : mesh.triangles)
+    for (int s = 0; s < 3; ++s) ++directed[{t[s], t[(s + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    ASSERT_EQ(count, 1);
+    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u);
+  }
+  EXPECT_NO_THROW(build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles));
+}
+
+TEST(Contour, SphereIsAClosedOutwardGenusZeroSurfaceWithTheRightArea) {
+  const double radius = 5;
+  const auto grid = sample(33, 0.4, {-6.4, -6.4, -6.4}, [&](const Vec3& p) { return radius - norm(p); });
+  const Mesh mesh = contour_isosurface(grid, 0);
+  expect_closed_oriented_manifold(mesh);
+  const auto prepared = prepare_mesh(mesh);
+  EXPECT_EQ(prepared.report.genus, 0);
+  EXPECT_EQ(prepared.report.triangles_flipped, 0) << "triangles must face outward";
+  double area = 0;
+  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+  EXPECT_NEAR(area / (4 * std::numbers::pi * radius * radius), 1.0, 0.02);
+  for (const auto& p : mesh.positions) EXPECT_NEAR(norm(p), radius, 0.05);
+  // Straight into the mapper.
+  const auto map = map_to_sphere(prepared.mesh);
+  EXPECT_TRUE(map.certificate.certified()) << map.certificate.folded << " folded, " << map.certificate.collapsed << " collapsed";
+}
+
+TEST(Contour, TorusHasGenusOne) {
+  const auto grid = sample(40, 0.25, {-5, -5, -5}, [](const Vec3& p) {
+    const double ring = std::sqrt(p[0] * p[0] + p[1] * p[1]) - 3;
+    return 1.0 - std::sqrt(ring * ring + p[2] * p[2]);
+  });
+  const Mesh mesh = contour_isosurface(grid, 0);
+  expect_closed_oriented_manifold(mesh);
+  // V - E + F = 0 for a torus.
+  const auto edges = static_cast<std::int64_t>(mesh.triangles.size()) * 3 / 2;
+  EXPECT_EQ(static_cast<std::int64_t>(mesh.vertex_count()) - edges + static_cast<std::int64_t>(mesh.triangle_count()), 0);
+}
+
+TEST(Contour, RandomFieldsAlwaysGiveClosedManifolds) {
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    Grid3<double> grid;
+    grid.size = {9, 8, 10};
+    grid.values.resize(static_cast<std::size_t>(grid.count()));
+    for (std::int64_t k = 0; k < grid.size[2]; ++k)
+      for (std::int64_t j = 0; j < grid.size[1]; ++j)
+        for (std::int64_t i = 0; i < grid.size[0]; ++i) {
+          const bool border = i == 0 || j == 0 || k == 0 || i == grid.size[0] - 1 || j == grid.size[1] - 1 || k == grid.size[2] - 1;
+          // Many exact ties with the level too (value 0 counts as outside).
+          grid.values[grid.index(i, j, k)] = border ? -1.0 : static_cast<double>(static_cast<int>(random() % 5) - 2);
+        }
+    const Mesh mesh = contour_isosurface(grid, 0);
+    expect_closed_oriented_manifold(mesh);
+  }
+}
+
+TEST(Contour, RefusesASurfaceThatReachesTheBorder) {
+  const auto grid = sample(5, 1, {0, 0, 0}, [](const Vec3&) { return 1.0; });
+  EXPECT_THROW(contour_isosurface(grid, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace spheremap
