@@ -94,6 +94,27 @@ Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const Surfa
         for (std::int64_t i = first(0); i <= last(0); ++i)
           if (squared_distance(field.point(i, j, k), a.position) < reach * reach) outside.values[outside.index(i, j, k)] = 0;
   }
+  // Only probe positions connected to the outside count (as for MSMS's outer surface): flood the outside
+  // samples from the grid border; enclosed pockets are left unmarked and end up filled.
+  {
+    std::vector<std::int64_t> queue;
+    for (std::int64_t s = 0; s < outside.count(); ++s) {
+      const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
+      if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && outside.values[s] == 1) {
+        outside.values[s] = 2;
+        queue.push_back(s);
+      }
+    }
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const auto s = queue[head];
+      const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
+      const std::int64_t neighbours[6] = {i > 0 ? s - 1 : -1, i + 1 < nx ? s + 1 : -1, j > 0 ? s - nx : -1,
+                                          j + 1 < ny ? s + nx : -1, k > 0 ? s - nx * ny : -1, k + 1 < nz ? s + nx * ny : -1};
+      for (auto t : neighbours)
+        if (t >= 0 && outside.values[t] == 1) outside.values[t] = 2, queue.push_back(t);
+    }
+    for (auto& v : outside.values) v = v == 2 ? 1 : 0;
+  }
   Grid3<double> squared = squared_distance_transform(outside);
   for (auto& d : squared.values) d *= h * h;
 
@@ -107,6 +128,13 @@ Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const Surfa
     const auto ci = static_cast<std::int64_t>(std::llround((centre[0] - field.origin[0]) / h));
     const auto cj = static_cast<std::int64_t>(std::llround((centre[1] - field.origin[1]) / h));
     const auto ck = static_cast<std::int64_t>(std::llround((centre[2] - field.origin[2]) / h));
+    // A centre on the SAS surface counts when a connected outside sample is next to it.
+    bool connected = false;
+    for (std::int64_t c = std::max<std::int64_t>(0, ck - 1); c <= std::min(nz - 1, ck + 1) && !connected; ++c)
+      for (std::int64_t b = std::max<std::int64_t>(0, cj - 1); b <= std::min(ny - 1, cj + 1) && !connected; ++b)
+        for (std::int64_t a = std::max<std::int64_t>(0, ci - 1); a <= std::min(nx - 1, ci + 1) && !connected; ++a)
+          connected = outside.values[outside.index(a, b, c)] != 0;
+    if (!connected) return;
     for (std::int64_t c = std::max<std::int64_t>(0, ck - window); c <= std::min(nz - 1, ck + window); ++c)
       for (std::int64_t b = std::max<std::int64_t>(0, cj - window); b <= std::min(ny - 1, cj + window); ++b)
         for (std::int64_t a = std::max<std::int64_t>(0, ci - window); a <= std::min(nx - 1, ci + window); ++a) {
