@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "spheremap/metrics/distortion.hpp"
+#include "spheremap/molecule/structure.hpp"
+#include "spheremap/surface/ses.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/topology/prepare.hpp"
 
@@ -18,17 +20,34 @@ struct MapJobOptions {
   /// welding; run_map_job throws InputError if one does not exist or was dropped.
   MapOptions map;
   bool ascii = false;  // ASCII PLY outputs (full precision) instead of binary
+  /// For structure files (.pdb .ent .cif .mmcif .pqr, optionally .gz): which atoms, and the surface.
+  StructureOptions structure;
+  SurfaceOptions surface;
 };
+
+/// True for the extensions read_structure reads.
+bool is_structure_file(const std::filesystem::path& path);
+
+/// The solvent-excluded surface of a structure file, every component, with atom provenance attributes.
+/// Throws InputError as read_structure and solvent_excluded_field do.
+Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions& structure,
+                       const SurfaceOptions& surface, StructureReport* report = nullptr);
 
 struct MapJobResult {
   std::filesystem::path input;
+  bool from_structure = false;  // the mesh is the molecular surface of a structure file
+  std::int64_t atoms = 0;
+  StructureReport structure;
+  double surface_seconds = 0;
   PreparedMesh prepared;
   SphereMap map;
   DistortionMetrics metrics;
   double read_seconds = 0, prepare_seconds = 0, metrics_seconds = 0;
 };
 
-/// Reads, prepares, maps and measures. Throws InputError (unreadable input) or MeshRefused (a mesh that
+/// Reads, prepares, maps and measures. A structure file becomes its solvent-excluded surface, of which
+/// the largest component (the outer surface) is mapped; handle repair is not there yet, so a surface of
+/// genus > 0 is refused with its genus. Throws InputError (unreadable input) or MeshRefused (a mesh that
 /// cannot be mapped); a map that is not certified is returned normally (see map.certificate).
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options);
 

@@ -1,5 +1,7 @@
 #include "spheremap/pipeline.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -70,9 +72,54 @@ void map_and_measure(MapJobResult& result, const MapJobOptions& options, const s
 
 }  // namespace
 
+bool is_structure_file(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  auto lower = [](std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    return text;
+  };
+  if (lower(p.extension().string()) == ".gz") p = p.stem();
+  const auto extension = lower(p.extension().string());
+  return extension == ".pdb" || extension == ".ent" || extension == ".cif" || extension == ".mmcif" || extension == ".pqr";
+}
+
+Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions& structure,
+                       const SurfaceOptions& surface, StructureReport* report) {
+  const Molecule molecule = read_structure(path, structure);
+  if (report) *report = molecule.report;
+  return solvent_excluded_surface(molecule.atoms, surface);
+}
+
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
   MapJobResult result;
   result.input = input;
+  if (is_structure_file(input)) {
+    const auto start = std::chrono::steady_clock::now();
+    const Molecule molecule = read_structure(input, options.structure);
+    result.read_seconds = seconds_since(start);
+    result.from_structure = true;
+    result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
+    result.structure = molecule.report;
+    const auto surface_start = std::chrono::steady_clock::now();
+    const Mesh surface = solvent_excluded_surface(molecule.atoms, options.surface);
+    result.surface_seconds = seconds_since(surface_start);
+    MapJobOptions named = options;
+    named.prepare.source_name = fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(),
+                                            options.surface.probe, options.surface.grid);
+    // The outer surface is the largest piece; cavities and detached pieces are counted in the report.
+    if (named.prepare.component == kComponentRefuse) named.prepare.component = kComponentLargest;
+    const auto prepare_start = std::chrono::steady_clock::now();
+    try {
+      result.prepared = prepare_mesh(surface, named.prepare);
+    } catch (const MeshRefused& e) {
+      throw MeshRefused(std::string(e.what()) +
+                        ". Handle repair is not implemented yet: a coarser --grid or a larger --probe often closes "
+                        "the handles");
+    }
+    result.prepare_seconds = seconds_since(prepare_start);
+    map_and_measure(result, options, named.prepare.source_name);
+    return result;
+  }
   const auto start = std::chrono::steady_clock::now();
   const PolygonSoup soup = read_polygon_soup(input);
   result.read_seconds = seconds_since(start);
@@ -103,6 +150,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
   const auto& m = result.metrics;
   nlohmann::json timings = nlohmann::json::object();
   timings["read"] = result.read_seconds;
+  if (result.from_structure) timings["surface"] = result.surface_seconds;
   timings["prepare"] = result.prepare_seconds;
   for (const auto& t : map.timings) timings[t.stage] = t.seconds;
   timings["metrics"] = result.metrics_seconds;
@@ -120,6 +168,20 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"collapse_floor", options.map.collapse_floor},
         {"weld_tolerance", options.prepare.weld_tolerance},
         {"poles_given", map.poles_from_options}}},
+      {"structure",
+       result.from_structure
+           ? nlohmann::json{{"atoms", result.atoms},
+                            {"probe", options.surface.probe},
+                            {"grid", options.surface.grid},
+                            {"models_in_file", result.structure.models_in_file},
+                            {"atoms_in_model", result.structure.atoms_in_model},
+                            {"hydrogens_removed", result.structure.hydrogens_removed},
+                            {"waters_removed", result.structure.waters_removed},
+                            {"hetero_removed", result.structure.hetero_removed},
+                            {"other_chains_removed", result.structure.other_chains_removed},
+                            {"alternate_locations_removed", result.structure.alternate_locations_removed},
+                            {"warnings", result.structure.warnings}}
+           : nlohmann::json(nullptr)},
       {"mesh",
        {{"vertices", result.prepared.mesh.vertex_count()},
         {"triangles", result.prepared.mesh.triangle_count()},
@@ -178,10 +240,15 @@ std::string summary_text(const MapJobResult& result) {
   const auto& map = result.map;
   const auto& c = map.certificate;
   const auto& m = result.metrics;
-  double total_seconds = result.read_seconds + result.prepare_seconds + result.metrics_seconds;
+  double total_seconds = result.read_seconds + result.surface_seconds + result.prepare_seconds + result.metrics_seconds;
   for (const auto& t : map.timings) total_seconds += t.seconds;
   std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
                                  result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
+  if (result.from_structure) {
+    text += fmt::format("  structure: {} atoms; molecular surface: {} component(s), the largest mapped\n", result.atoms,
+                        result.prepared.report.components);
+    for (const auto& warning : result.structure.warnings) text += fmt::format("  warning: {}\n", warning);
+  }
   text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n", map.method,
                       map.north, map.south, map.pole_graph_distance, map.split_edges.size(), map.solver_used);
   text += fmt::format("  plain algorithm: {} folded, {} collapsed; repair: {} re-weighting rounds, {} untangling moves\n",

@@ -16,6 +16,13 @@ constexpr std::array<std::array<int, 3>, 8> kCorner = {{{0, 0, 0}, {1, 0, 0}, {0
 constexpr std::array<std::array<int, 4>, 6> kTetrahedra = {{{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
                                                             {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}}};
 
+// Where the surface passes within this fraction of a step of a sample, its vertex is kept at this fraction:
+// vertices closer to a sample make sliver triangles of almost no area, whose area ratios dominate any
+// distortion statistic of a map. The shift is at most a tenth of a step.
+// Measured on 1crn at 0.5 Å: mean area distortion of its map 339,424% with 1e-6, 260% with 0.1; the SES
+// area moved from -0.82% to -0.37% of MSMS's (0.2 overshoots to +1.5%).
+constexpr double kMinimumFraction = 0.1;
+
 }  // namespace
 
 Mesh contour_isosurface(const Grid3<double>& field, double level) {
@@ -39,7 +46,7 @@ Mesh contour_isosurface(const Grid3<double>& field, double level) {
     auto [it, inserted] = vertex_of_edge.emplace(key, static_cast<std::int32_t>(mesh.positions.size()));
     if (inserted) {
       const double fa = field.values[a], fb = field.values[b];
-      const double t = std::clamp((level - fa) / (fb - fa), 1e-6, 1 - 1e-6);
+      const double t = std::clamp((level - fa) / (fb - fa), kMinimumFraction, 1 - kMinimumFraction);
       auto position = [&](std::int64_t s) {
         const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
         return field.point(i, j, k);

@@ -164,3 +164,39 @@ TEST_F(Cli, ComponentOptionChoosesAPiece) {
 
 }  // namespace
 }  // namespace spheremap
+
+namespace spheremap {
+namespace {
+
+class DataCli : public Cli {};
+
+// From a structure file to a certified sphere map in one command, and the surface alone.
+TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
+  const fs::path pdb = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb";
+  if (!fs::exists(pdb)) GTEST_SKIP() << "shared data not found: " << pdb << " (skipped on purpose)";
+  const auto map = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crambin").string());
+  ASSERT_EQ(map.exit_code, 0) << map.output;
+  EXPECT_NE(map.output.find("327 atoms"), std::string::npos) << map.output;
+  const auto header = slurp(folder_ / "crambin" / "sphere.ply").substr(0, 700);
+  for (const char* property : {"property int atomid", "property int vertex_atom_serial", "property int vertex_residue_number"})
+    EXPECT_NE(header.find(property), std::string::npos) << property;
+  EXPECT_NE(slurp(folder_ / "crambin" / "report.json").find("\"probe\": 1.4"), std::string::npos);
+
+  const auto surface = run_cli("surface " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn.ply").string() +
+                               " --probe 1.8 --grid 0.6");
+  ASSERT_EQ(surface.exit_code, 0) << surface.output;
+  EXPECT_NE(slurp(folder_ / "crn.ply").substr(0, 400).find("property int atomid"), std::string::npos);
+
+  // A surface with handles is refused with its genus until handle repair exists.
+  const auto handles = run_cli("map " + (pdb / "misc" / "4hhb.cif").string() + " -o " + (folder_ / "hb").string());
+  EXPECT_EQ(handles.exit_code, 2) << handles.output;
+  EXPECT_NE(handles.output.find("genus"), std::string::npos) << handles.output;
+  EXPECT_FALSE(fs::exists(folder_ / "hb" / "sphere.ply"));
+
+  const auto bad = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "x").string() + " --chains Q");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("chain 'Q' does not exist"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace spheremap

@@ -46,7 +46,9 @@ TEST(Ses, OneAtomGivesItsVanDerWaalsSphere) {
   const Mesh mesh = solvent_excluded_surface({atom_at({0.3, -0.2, 0.1}, 1.7, 1)}, options);
   expect_closed_oriented_manifold(mesh);
   EXPECT_NEAR(area_of(mesh) / (4 * std::numbers::pi * 1.7 * 1.7), 1.0, 0.02);
-  for (const auto& p : mesh.positions) ASSERT_NEAR(norm(p - Vec3{0.3, -0.2, 0.1}), 1.7, 0.03);
+  // Vertices may sit up to a tenth of a step off the interpolated crossing (contour_isosurface), plus
+  // the linear interpolation error of a curved surface: within 0.2 step.
+  for (const auto& p : mesh.positions) ASSERT_NEAR(norm(p - Vec3{0.3, -0.2, 0.1}), 1.7, 0.2 * options.grid);
 }
 
 TEST(Ses, TwoTouchingAtomsAreBridgedByTheProbeAndFarAtomsAreNot) {

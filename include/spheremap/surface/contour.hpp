@@ -11,8 +11,9 @@ namespace spheremap {
 /// diagonals, so neighbouring cells agree on shared faces and no case is ambiguous: with the samples
 /// classified strictly (inside: value > level), the result is a closed, consistently oriented 2-manifold
 /// whenever every sample on the grid's outer layer is outside. Triangles face outward (towards
-/// decreasing values). Vertices sit on grid edges; interpolation parameters are kept in
-/// [1e-6, 1 - 1e-6] so that no two vertices coincide. Vertices are shared, in a deterministic order.
+/// decreasing values). Vertices sit on grid edges; interpolation parameters are kept in [0.1, 0.9]
+/// (a vertex moves by at most a tenth of a step) so that no sliver triangles appear. Vertices are shared,
+/// in a deterministic order.
 /// Throws std::invalid_argument if a sample of the outer layer is inside or the grid is smaller than 2³.
 Mesh contour_isosurface(const Grid3<double>& field, double level);
 
