@@ -48,6 +48,14 @@ struct RawAtom {
   std::string residue_key;  // chain + number + insertion code + name: one residue
 };
 
+// Fills what the filters need from the element and residue: for readers without gemmi's residue model.
+void classify(RawAtom& raw) {
+  raw.hydrogen = raw.atom.element == "H" || raw.atom.element == "D";
+  raw.water = is_water_name(raw.atom.residue_name);
+  raw.residue_key = fmt::format("{}|{}|{}|{}", raw.atom.chain, raw.atom.residue_number, raw.atom.insertion_code,
+                                raw.atom.residue_name);
+}
+
 // mmCIF files written by other programs (PyMOL's 1bna.cif) may lack the columns gemmi's structure
 // reader needs (auth_seq_id); read the _atom_site table directly with gemmi's CIF parser.
 std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int model, std::int64_t& models_in_file) {
@@ -92,10 +100,7 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int
     int model_number = model;
     std::from_chars(wanted.data(), wanted.data() + wanted.size(), model_number);
     raw.atom.model = model_number;
-    raw.hydrogen = raw.atom.element == "H" || raw.atom.element == "D";
-    raw.water = is_water_name(raw.atom.residue_name);
-    raw.residue_key = fmt::format("{}|{}|{}|{}", raw.atom.chain, raw.atom.residue_number, raw.atom.insertion_code,
-                                  raw.atom.residue_name);
+    classify(raw);
     atoms.push_back(std::move(raw));
   }
   return atoms;
@@ -217,10 +222,7 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
       const auto first = name.find_first_not_of("0123456789");
       raw.atom.element = first == std::string::npos ? "X" : name.substr(first, 1);
     }
-    raw.hydrogen = raw.atom.element == "H" || raw.atom.element == "D";
-    raw.water = is_water_name(raw.atom.residue_name);
-    raw.residue_key = fmt::format("{}|{}|{}|{}", raw.atom.chain, raw.atom.residue_number, raw.atom.insertion_code,
-                                  raw.atom.residue_name);
+    classify(raw);
     atoms.push_back(std::move(raw));
   }
   return atoms;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -9,7 +11,6 @@
 
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/map.hpp"
-#include "spheremap/topology/connectivity.hpp"
 #include "spheremap/topology/prepare.hpp"
 
 namespace spheremap {
@@ -27,17 +28,7 @@ Grid3<double> sample(std::int64_t n, double spacing, const Vec3& origin, auto&& 
   return grid;
 }
 
-// Every directed edge once, its reverse once: closed and consistently oriented; fans checked by rings.
-void expect_closed_oriented_manifold(const Mesh& mesh) {
-  std::map<std::pair<std::int32_t, std::int32_t>, int> directed;
-  for (const auto& t : mesh.triangles)
-    for (int s = 0; s < 3; ++s) ++directed[{t[s], t[(s + 1) % 3]}];
-  for (const auto& [edge, count] : directed) {
-    ASSERT_EQ(count, 1);
-    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u);
-  }
-  EXPECT_NO_THROW(build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles));
-}
+using testing_support::expect_closed_oriented_manifold;
 
 TEST(Contour, SphereIsAClosedOutwardGenusZeroSurfaceWithTheRightArea) {
   const double radius = 5;

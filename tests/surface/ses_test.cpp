@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -9,7 +11,6 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap {
 namespace {
@@ -29,16 +30,7 @@ double area_of(const Mesh& mesh) {
   return area;
 }
 
-void expect_closed_oriented_manifold(const Mesh& mesh) {
-  std::map<std::pair<std::int32_t, std::int32_t>, int> directed;
-  for (const auto& t : mesh.triangles)
-    for (int s = 0; s < 3; ++s) ++directed[{t[s], t[(s + 1) % 3]}];
-  for (const auto& [edge, count] : directed) {
-    ASSERT_EQ(count, 1);
-    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u);
-  }
-  EXPECT_NO_THROW(build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles));
-}
+using testing_support::expect_closed_oriented_manifold;
 
 TEST(Ses, OneAtomGivesItsVanDerWaalsSphere) {
   SurfaceOptions options;
