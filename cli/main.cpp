@@ -89,6 +89,8 @@ int main(int argc, char** argv) {
     command->add_flag("--keep-waters", options.structure.keep_waters, "Keep waters (default: removed)");
     command->add_flag("--no-hetero", no_hetero, "Remove ligands, ions and other HETATM groups (default: kept)");
     command->add_option("--radii", radii_file, "Radius table: 'ELEMENT RADIUS' per line (default: Bondi 1964)");
+    command->add_flag("--keep-topology", options.keep_topology,
+                      "Do not repair handles of the molecular surface (map: refuse a surface of genus > 0, the paper's filter)");
   };
   add_structure_options(map_command);
 
@@ -141,7 +143,10 @@ int main(int argc, char** argv) {
     if (!radii_file.empty()) options.structure.radii = spheremap::load_radius_table(radii_file);
     if (*surface_command) {
       spheremap::StructureReport report;
-      const spheremap::Mesh surface = spheremap::molecular_surface(input, options.structure, options.surface, &report);
+      const spheremap::Molecule molecule = spheremap::read_structure(input, options.structure);
+      report = molecule.report;
+      spheremap::TopologyRepair repair;
+      const spheremap::Mesh surface = spheremap::repaired_surface(molecule.atoms, options.surface, options.keep_topology, &repair);
       spheremap::write_ply(surface_output, surface, spheremap::PlyWriteOptions{options.ascii});
       if (!quiet) {
         double area = 0;
@@ -151,6 +156,9 @@ int main(int argc, char** argv) {
                                  surface_output, surface.vertex_count(), surface.triangle_count(), area,
                                  options.surface.probe, options.surface.grid);
         for (const auto& warning : report.warnings) std::cout << "  warning: " << warning << "\n";
+        if (repair.method != "none")
+          std::cout << fmt::format("  handle repair: {} ({} grid samples), area before {:.1f} Å²\n", repair.method,
+                                   repair.samples_changed, repair.area_before);
       }
     }
     if (*generate_command) {

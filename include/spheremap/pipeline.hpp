@@ -23,6 +23,17 @@ struct MapJobOptions {
   /// For structure files (.pdb .ent .cif .mmcif .pqr, optionally .gz): which atoms, and the surface.
   StructureOptions structure;
   SurfaceOptions surface;
+  /// Structure files: skip the handle repair and refuse a surface of genus > 0 (the paper's filter).
+  bool keep_topology = false;
+};
+
+/// What the handle repair of a molecular surface changed (all zero when nothing was needed).
+struct TopologyRepair {
+  int genus_before = 0;           // of the outer surface before repair
+  std::string method = "none";    // "none", "fill" (tunnels spanned) or "cut" (handles cut)
+  std::int64_t samples_changed = 0;
+  double volume_changed = 0;      // Å³ (samples changed x grid³)
+  double area_before = 0, area_after = 0;  // Å², of the whole surface
 };
 
 /// True for the extensions read_structure reads.
@@ -33,11 +44,16 @@ bool is_structure_file(const std::filesystem::path& path);
 Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions& structure,
                        const SurfaceOptions& surface, StructureReport* report = nullptr);
 
+/// Atoms to their SES, repaired to genus 0 by cut_handles unless keep_topology.
+Mesh repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
+                      TopologyRepair* repair);
+
 struct MapJobResult {
   std::filesystem::path input;
   bool from_structure = false;  // the mesh is the molecular surface of a structure file
   std::int64_t atoms = 0;
   StructureReport structure;
+  TopologyRepair topology;
   double surface_seconds = 0;
   PreparedMesh prepared;
   SphereMap map;
@@ -46,8 +62,8 @@ struct MapJobResult {
 };
 
 /// Reads, prepares, maps and measures. A structure file becomes its solvent-excluded surface, of which
-/// the largest component (the outer surface) is mapped; handle repair is not there yet, so a surface of
-/// genus > 0 is refused with its genus. Throws InputError (unreadable input) or MeshRefused (a mesh that
+/// the largest component (the outer surface) is mapped after handle repair (unless keep_topology, when a
+/// surface of genus > 0 is refused with its genus). Throws InputError (unreadable input) or MeshRefused (a mesh that
 /// cannot be mapped); a map that is not certified is returned normally (see map.certificate).
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options);
 

@@ -9,7 +9,10 @@
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
+#include "spheremap/geometry/vec.hpp"
 #include "spheremap/io/mesh_io.hpp"
+#include "spheremap/surface/contour.hpp"
+#include "spheremap/surface/handles.hpp"
 
 namespace spheremap {
 namespace {
@@ -90,6 +93,28 @@ Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions
   return solvent_excluded_surface(molecule.atoms, surface);
 }
 
+Mesh repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
+                      TopologyRepair* repair) {
+  Grid3<double> field = solvent_excluded_field(atoms, surface);
+  TopologyRepair local;
+  TopologyRepair& report = repair ? *repair : local;
+  if (keep_topology) return surface_from_field(field, atoms, surface);
+  auto area_of = [](const Mesh& mesh) {
+    double area = 0;
+    for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+    return area;
+  };
+  const Mesh before = contour_isosurface(field, 0.0);
+  report.area_before = area_of(before);
+  const HandleCut cut = cut_handles(field, 0.0);
+  report.samples_changed = cut.samples_removed;
+  report.method = cut.samples_removed == 0 ? "none" : cut.filled ? "fill" : "cut";
+  report.volume_changed = static_cast<double>(cut.samples_removed) * surface.grid * surface.grid * surface.grid;
+  Mesh after = surface_from_field(field, atoms, surface);
+  report.area_after = area_of(after);
+  return after;
+}
+
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
   MapJobResult result;
   result.input = input;
@@ -101,7 +126,7 @@ MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions
     result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
     result.structure = molecule.report;
     const auto surface_start = std::chrono::steady_clock::now();
-    const Mesh surface = solvent_excluded_surface(molecule.atoms, options.surface);
+    const Mesh surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
     result.surface_seconds = seconds_since(surface_start);
     MapJobOptions named = options;
     named.prepare.source_name = fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(),
@@ -113,8 +138,7 @@ MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions
       result.prepared = prepare_mesh(surface, named.prepare);
     } catch (const MeshRefused& e) {
       throw MeshRefused(std::string(e.what()) +
-                        ". Handle repair is not implemented yet: a coarser --grid or a larger --probe often closes "
-                        "the handles");
+                        (options.keep_topology ? ". --keep-topology was given: leave it out to repair the handles" : ""));
     }
     result.prepare_seconds = seconds_since(prepare_start);
     map_and_measure(result, options, named.prepare.source_name);
@@ -180,7 +204,14 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
                             {"hetero_removed", result.structure.hetero_removed},
                             {"other_chains_removed", result.structure.other_chains_removed},
                             {"alternate_locations_removed", result.structure.alternate_locations_removed},
-                            {"warnings", result.structure.warnings}}
+                            {"warnings", result.structure.warnings},
+                            {"topology_repair",
+                             {{"method", result.topology.method},
+                              {"samples_changed", result.topology.samples_changed},
+                              {"volume_changed", result.topology.volume_changed},
+                              {"area_before", result.topology.area_before},
+                              {"area_after", result.topology.area_after},
+                              {"area_changed_percent", result.topology.area_before > 0 ? 100 * (result.topology.area_after / result.topology.area_before - 1) : 0.0}}}}
            : nlohmann::json(nullptr)},
       {"mesh",
        {{"vertices", result.prepared.mesh.vertex_count()},
@@ -247,6 +278,11 @@ std::string summary_text(const MapJobResult& result) {
   if (result.from_structure) {
     text += fmt::format("  structure: {} atoms; molecular surface: {} component(s), the largest mapped\n", result.atoms,
                         result.prepared.report.components);
+    if (result.topology.method != "none")
+      text += fmt::format("  handle repair: {} ({} grid samples, {:.1f} Å³), surface area {:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
+                          result.topology.method, result.topology.samples_changed, result.topology.volume_changed,
+                          result.topology.area_before, result.topology.area_after,
+                          100 * (result.topology.area_after / result.topology.area_before - 1));
     for (const auto& warning : result.structure.warnings) text += fmt::format("  warning: {}\n", warning);
   }
   text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n", map.method,

@@ -202,7 +202,11 @@ Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const Surfa
 }
 
 Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  Mesh mesh = contour_isosurface(solvent_excluded_field(atoms, options), 0.0);
+  return surface_from_field(solvent_excluded_field(atoms, options), atoms, options);
+}
+
+Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+  Mesh mesh = contour_isosurface(field, 0.0);
   double largest_radius = 0;
   for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
   const AtomCells cells(atoms, largest_radius + options.probe);

@@ -432,7 +432,7 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
   if (euler != 2) {
     throw MeshRefused(fmt::format(
         "{}: the surface has genus {} ({}; Euler characteristic {}), but a one-to-one map onto a sphere needs "
-        "genus 0. Close the handles first (spheremap's own repair comes with molecular surfaces)",
+        "genus 0. Close the handles first (spheremap repairs the molecular surfaces it builds, not given meshes)",
         name, report.genus, plural(report.genus, "handle or tunnel", "handles or tunnels"), euler));
   }
   if (attributes_from) {

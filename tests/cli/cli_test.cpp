@@ -187,11 +187,17 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   ASSERT_EQ(surface.exit_code, 0) << surface.output;
   EXPECT_NE(slurp(folder_ / "crn.ply").substr(0, 400).find("property int atomid"), std::string::npos);
 
-  // A surface with handles is refused with its genus until handle repair exists.
-  const auto handles = run_cli("map " + (pdb / "misc" / "4hhb.cif").string() + " -o " + (folder_ / "hb").string());
-  EXPECT_EQ(handles.exit_code, 2) << handles.output;
-  EXPECT_NE(handles.output.find("genus"), std::string::npos) << handles.output;
-  EXPECT_FALSE(fs::exists(folder_ / "hb" / "sphere.ply"));
+  // A surface with handles (4hhb has 8 at a 1 Å grid) is repaired and maps certified; with
+  // --keep-topology (the paper's filter) it is refused with its genus and nothing is written.
+  const std::string haemoglobin = (pdb / "misc" / "4hhb.cif").string() + " --grid 1.0";
+  const auto repaired = run_cli("map " + haemoglobin + " -o " + (folder_ / "hb").string());
+  EXPECT_EQ(repaired.exit_code, 0) << repaired.output;
+  EXPECT_NE(repaired.output.find("handle repair:"), std::string::npos) << repaired.output;
+  EXPECT_NE(slurp(folder_ / "hb" / "report.json").find("\"topology_repair\""), std::string::npos);
+  const auto kept = run_cli("map " + haemoglobin + " -o " + (folder_ / "hb-kept").string() + " --keep-topology");
+  EXPECT_EQ(kept.exit_code, 2) << kept.output;
+  EXPECT_NE(kept.output.find("genus 8"), std::string::npos) << kept.output;
+  EXPECT_FALSE(fs::exists(folder_ / "hb-kept" / "sphere.ply"));
 
   const auto bad = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "x").string() + " --chains Q");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;

@@ -34,4 +34,8 @@ Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const Surfa
 /// van der Waals sphere is nearest (smallest |x - centre| - radius).
 Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptions& options);
 
+/// The contour g = 0 of a field from solvent_excluded_field (possibly repaired by cut_handles), with the
+/// same provenance attributes as solvent_excluded_surface.
+Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options);
+
 }  // namespace spheremap
