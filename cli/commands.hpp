@@ -1,0 +1,44 @@
+// The subcommands of the spheremap CLI, one file each; main.cpp only registers and dispatches them.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "spheremap/pipeline.hpp"
+
+namespace spheremap::cli {
+
+/// A registered subcommand and what runs it after parsing; `run` returns the process exit code and may
+/// throw spheremap::Error (main turns it into a message and the error's exit code).
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Command add_map_command(CLI::App& app);
+Command add_surface_command(CLI::App& app);
+Command add_generate_command(CLI::App& app);
+
+/// Structure and surface options shared by map, surface and batch. Call add() before parsing and
+/// apply() after: apply() fills `options` (chains, hetero, radius table, --preset).
+struct StructureCliOptions {
+  std::string chains, radii_file, preset;
+  bool no_hetero = false;
+  CLI::App* command = nullptr;
+  void add(CLI::App* command, MapJobOptions& options);
+  void apply(MapJobOptions& options) const;
+};
+
+/// The paper's settings for reproduction (--preset paper): probe 1.8 Å, Bondi radii, grid 2.5 Å
+/// (3,000-8,000 triangles for the paper's proteins with our contouring).
+inline constexpr double kPaperProbe = 1.8;
+inline constexpr double kPaperGrid = 2.5;
+
+/// Harmonic weights by their CLI name (uniform, cotan, mean-value).
+Weights parse_weights(const std::string& name);
+
+}  // namespace spheremap::cli
