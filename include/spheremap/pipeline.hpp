@@ -67,6 +67,13 @@ struct MapJobResult {
 /// cannot be mapped); a map that is not certified is returned normally (see map.certificate).
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options);
 
+/// One input mapped with several weightings (options.map.weights is replaced by each in turn): the file
+/// is read, surfaced and prepared once (each result repeats those shared timings). Results in the order of
+/// `weights`; the same throws as run_map_job,
+/// and std::invalid_argument if `weights` is empty.
+std::vector<MapJobResult> run_map_jobs(const std::filesystem::path& input, const MapJobOptions& options,
+                                       const std::vector<Weights>& weights);
+
 /// Same, from a mesh in memory (`name` is used in messages and the report).
 MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJobOptions& options);
 

@@ -115,8 +115,11 @@ Mesh repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surf
   return after;
 }
 
-MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
-  MapJobResult result;
+namespace {
+
+// Everything before the map: read (and for structures, the surface and its repair), then prepare.
+// Returns the name used in messages.
+std::string load_and_prepare(const std::filesystem::path& input, const MapJobOptions& options, MapJobResult& result) {
   result.input = input;
   if (is_structure_file(input)) {
     const auto start = std::chrono::steady_clock::now();
@@ -141,8 +144,7 @@ MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions
                         (options.keep_topology ? ". --keep-topology was given: leave it out to repair the handles" : ""));
     }
     result.prepare_seconds = seconds_since(prepare_start);
-    map_and_measure(result, options, named.prepare.source_name);
-    return result;
+    return named.prepare.source_name;
   }
   const auto start = std::chrono::steady_clock::now();
   const PolygonSoup soup = read_polygon_soup(input);
@@ -152,8 +154,33 @@ MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions
   const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(soup, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
-  map_and_measure(result, options, named.prepare.source_name);
+  return named.prepare.source_name;
+}
+
+}  // namespace
+
+MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
+  MapJobResult result;
+  const std::string name = load_and_prepare(input, options, result);
+  map_and_measure(result, options, name);
   return result;
+}
+
+std::vector<MapJobResult> run_map_jobs(const std::filesystem::path& input, const MapJobOptions& options,
+                                       const std::vector<Weights>& weights) {
+  if (weights.empty()) throw std::invalid_argument("run_map_jobs: no weights");
+  MapJobResult loaded;
+  const std::string name = load_and_prepare(input, options, loaded);
+  std::vector<MapJobResult> results;
+  results.reserve(weights.size());
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    MapJobResult result = k + 1 < weights.size() ? loaded : std::move(loaded);
+    MapJobOptions weighted = options;
+    weighted.map.weights = weights[k];
+    map_and_measure(result, weighted, name);
+    results.push_back(std::move(result));
+  }
+  return results;
 }
 
 MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJobOptions& options) {
