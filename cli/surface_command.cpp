@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "spheremap/geometry/vec.hpp"
 #include "spheremap/io/mesh_io.hpp"
 
 namespace spheremap::cli {
@@ -32,19 +31,29 @@ Command add_surface_command(CLI::App& app) {
             s.structure.apply(s.options);
             const Molecule molecule = read_structure(s.input, s.options.structure);
             TopologyRepair repair;
-            const Mesh surface = repaired_surface(molecule.atoms, s.options.surface, s.options.keep_topology, &repair);
+            const MolecularSurface result = repaired_surface(molecule.atoms, s.options.surface, s.options.keep_topology, &repair);
+            const Mesh& surface = result.mesh;
             write_ply(s.output, surface, PlyWriteOptions{s.options.ascii});
             if (!s.quiet) {
               double area = 0;
-              for (const auto& t : surface.triangles)
-                area += triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]);
+              for (const auto& c : result.components) area += c.area;
               std::cout << fmt::format("{}: {} vertices, {} triangles, area {:.1f} Å² (all components; probe {} Å, grid {} Å)\n",
                                        s.output, surface.vertex_count(), surface.triangle_count(), area,
                                        s.options.surface.probe, s.options.surface.grid);
+              for (std::size_t c = 0; c < result.reports.size(); ++c) {
+                const auto& r = result.reports[c];
+                std::cout << fmt::format("  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} residues\n",
+                                         c, r.kind, r.triangles, r.area, r.volume, r.genus, r.residue_count);
+              }
               for (const auto& warning : molecule.report.warnings) std::cout << "  warning: " << warning << "\n";
               if (repair.method != "none")
-                std::cout << fmt::format("  handle repair: {} ({} grid samples), area before {:.1f} Å²\n", repair.method,
-                                         repair.samples_changed, repair.area_before);
+                std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
+                                         "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
+                                         repair.method, repair.genus_before, repair.changes.size(), repair.samples_changed,
+                                         repair.area_before, repair.area_after,
+                                         100 * (repair.area_after / repair.area_before - 1));
+              else if (repair.genus_before != 0)
+                std::cout << fmt::format("  outer surface genus {} (--keep-topology: not repaired)\n", repair.genus_before);
             }
             return 0;
           }};

@@ -10,6 +10,7 @@
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/surface/ses.hpp"
 #include "spheremap/sphere/map.hpp"
+#include "spheremap/topology/components.hpp"
 #include "spheremap/topology/prepare.hpp"
 
 namespace spheremap {
@@ -27,13 +28,44 @@ struct MapJobOptions {
   bool keep_topology = false;
 };
 
+/// One handle or tunnel the repair removed.
+struct HandleChangeReport {
+  std::string kind;              // "cut" (a handle cut through) or "fill" (a tunnel spanned)
+  std::int64_t samples = 0;      // grid samples moved to the other side
+  double volume = 0;             // Å³ (samples x grid³)
+  Vec3 centre{};                 // mean position of the samples
+  std::vector<std::string> lining_residues;  // "chain:NAMEnumber[icode]", nearest atoms of the samples, sorted
+};
+
 /// What the handle repair of a molecular surface changed (all zero when nothing was needed).
 struct TopologyRepair {
-  int genus_before = 0;           // of the outer surface before repair
-  std::string method = "none";    // "none", "fill" (tunnels spanned) or "cut" (handles cut)
+  int genus_before = 0;           // of the outer surface before repair (also with --keep-topology)
+  /// "none"; "per-handle" (each handle cut or each tunnel filled, whichever is smaller); or, when that
+  /// does not reach genus 0, the global fallback "fill" (every tunnel filled) or "cut" (every handle cut).
+  std::string method = "none";
   std::int64_t samples_changed = 0;
   double volume_changed = 0;      // Å³ (samples changed x grid³)
-  double area_before = 0, area_after = 0;  // Å², of the whole surface
+  double area_before = 0, area_after = 0;  // Å², of the outer surface (the largest component)
+  std::vector<HandleChangeReport> changes;  // per handle ("per-handle"), or one entry for a global fallback
+};
+
+/// One closed component of a molecular surface.
+struct SurfaceComponentReport {
+  std::string kind;  // "outer" (the largest), "piece" (a detached part), "cavity" (an enclosed void)
+  std::int64_t vertices = 0, triangles = 0;
+  double area = 0;    // Å²
+  double volume = 0;  // Å³ enclosed (a cavity's void volume, positive)
+  int genus = 0;
+  bool mapped = false;
+  std::vector<std::string> residues;  // residues of the atoms nearest its vertices, sorted (at most 200)
+  std::int64_t residue_count = 0;     // all of them
+};
+
+/// A molecular surface with its components analysed.
+struct MolecularSurface {
+  Mesh mesh;  // every component, with atom provenance
+  std::vector<MeshComponent> components;          // largest area first
+  std::vector<SurfaceComponentReport> reports;    // same order
 };
 
 /// True for the extensions read_structure reads.
@@ -44,9 +76,11 @@ bool is_structure_file(const std::filesystem::path& path);
 Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions& structure,
                        const SurfaceOptions& surface, StructureReport* report = nullptr);
 
-/// Atoms to their SES, repaired to genus 0 by cut_handles unless keep_topology.
-Mesh repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                      TopologyRepair* repair);
+/// Atoms to their SES with full atom provenance (add_atom_provenance), the outer surface (largest
+/// component) repaired to genus 0 by repair_outer_genus unless keep_topology; components analysed.
+/// Throws InputError as solvent_excluded_field does.
+MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
+                                  TopologyRepair* repair);
 
 struct MapJobResult {
   std::filesystem::path input;
@@ -54,6 +88,7 @@ struct MapJobResult {
   std::int64_t atoms = 0;
   StructureReport structure;
   TopologyRepair topology;
+  std::vector<SurfaceComponentReport> components;  // of the molecular surface; the mapped one flagged
   double surface_seconds = 0;
   PreparedMesh prepared;
   SphereMap map;
@@ -62,7 +97,8 @@ struct MapJobResult {
 };
 
 /// Reads, prepares, maps and measures. A structure file becomes its solvent-excluded surface, of which
-/// the largest component (the outer surface) is mapped after handle repair (unless keep_topology, when a
+/// the largest component (the outer surface; or options.prepare.component = k: the k-th largest) is
+/// mapped after handle repair (unless keep_topology, when a
 /// surface of genus > 0 is refused with its genus). Throws InputError (unreadable input) or MeshRefused (a mesh that
 /// cannot be mapped); a map that is not certified is returned normally (see map.certificate).
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/handles.hpp"
+#include "spheremap/surface/provenance.hpp"
 
 namespace spheremap {
 namespace {
@@ -90,29 +92,126 @@ Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions
                        const SurfaceOptions& surface, StructureReport* report) {
   const Molecule molecule = read_structure(path, structure);
   if (report) *report = molecule.report;
-  return solvent_excluded_surface(molecule.atoms, surface);
+  Mesh mesh = solvent_excluded_surface(molecule.atoms, surface);
+  add_atom_provenance(mesh, molecule.atoms);
+  return mesh;
 }
 
-Mesh repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                      TopologyRepair* repair) {
+namespace {
+
+std::string residue_label(const Atom& atom) {
+  std::string label = fmt::format("{}:{}{}", atom.chain, atom.residue_name, atom.residue_number);
+  if (atom.insertion_code != ' ') label += atom.insertion_code;
+  return label;
+}
+
+std::vector<std::string> sorted_unique(std::vector<std::string> labels) {
+  std::sort(labels.begin(), labels.end());
+  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  return labels;
+}
+
+// The residues of the atoms nearest (smallest |x - centre| - radius) to the given grid samples.
+std::vector<std::string> residues_near_samples(const Grid3<double>& field, const std::vector<std::int64_t>& samples,
+                                               const std::vector<Atom>& atoms, double reach) {
+  Vec3 low{1e300, 1e300, 1e300}, high{-1e300, -1e300, -1e300};
+  std::vector<Vec3> points;
+  points.reserve(samples.size());
+  for (const auto s : samples) {
+    const auto [nx, ny, nz] = field.size;
+    const Vec3 p = field.point(s % nx, (s / nx) % ny, s / (nx * ny));
+    points.push_back(p);
+    for (int d = 0; d < 3; ++d) low[d] = std::min(low[d], p[d] - reach), high[d] = std::max(high[d], p[d] + reach);
+  }
+  std::vector<std::int32_t> candidates;
+  for (std::int32_t a = 0; a < static_cast<std::int32_t>(atoms.size()); ++a) {
+    const auto& c = atoms[a].position;
+    if (c[0] >= low[0] && c[0] <= high[0] && c[1] >= low[1] && c[1] <= high[1] && c[2] >= low[2] && c[2] <= high[2])
+      candidates.push_back(a);
+  }
+  std::vector<std::string> labels;
+  for (const auto& p : points) {
+    double best = std::numeric_limits<double>::infinity();
+    std::int32_t chosen = -1;
+    for (const auto a : candidates) {
+      const double gap = norm(p - atoms[a].position) - atoms[a].radius;
+      if (gap < best) best = gap, chosen = a;
+    }
+    if (chosen >= 0) labels.push_back(residue_label(atoms[chosen]));
+  }
+  return sorted_unique(std::move(labels));
+}
+
+HandleChangeReport describe_change(const Grid3<double>& field, bool filled, const std::vector<std::int64_t>& samples,
+                                   const std::vector<Atom>& atoms, double reach) {
+  HandleChangeReport change;
+  change.kind = filled ? "fill" : "cut";
+  change.samples = static_cast<std::int64_t>(samples.size());
+  change.volume = static_cast<double>(samples.size()) * std::pow(field.spacing, 3);
+  const auto [nx, ny, nz] = field.size;
+  for (const auto s : samples) change.centre = change.centre + field.point(s % nx, (s / nx) % ny, s / (nx * ny));
+  if (!samples.empty()) change.centre = (1.0 / static_cast<double>(samples.size())) * change.centre;
+  change.lining_residues = residues_near_samples(field, samples, atoms, reach);
+  return change;
+}
+
+std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const std::vector<MeshComponent>& components,
+                                                        const std::vector<Atom>& atoms) {
+  constexpr std::size_t kListedResidues = 200;
+  const auto& atom_of = mesh.integer_attributes.at("atomid");
+  std::vector<SurfaceComponentReport> reports;
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    const auto& component = components[c];
+    SurfaceComponentReport report;
+    report.kind = c == 0 ? "outer" : component.signed_volume < 0 ? "cavity" : "piece";
+    report.vertices = component.vertices;
+    report.triangles = static_cast<std::int64_t>(component.triangles.size());
+    report.area = component.area;
+    report.volume = std::abs(component.signed_volume);
+    report.genus = component.genus;
+    std::vector<std::string> labels;
+    for (const auto t : component.triangles)
+      for (const auto v : mesh.triangles[t]) labels.push_back(residue_label(atoms[atom_of[v]]));
+    labels = sorted_unique(std::move(labels));
+    report.residue_count = static_cast<std::int64_t>(labels.size());
+    if (labels.size() > kListedResidues) labels.resize(kListedResidues);
+    report.residues = std::move(labels);
+    reports.push_back(std::move(report));
+  }
+  return reports;
+}
+
+}  // namespace
+
+MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
+                                  TopologyRepair* repair) {
   Grid3<double> field = solvent_excluded_field(atoms, surface);
   TopologyRepair local;
   TopologyRepair& report = repair ? *repair : local;
-  if (keep_topology) return surface_from_field(field, atoms, surface);
-  auto area_of = [](const Mesh& mesh) {
-    double area = 0;
-    for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-    return area;
-  };
-  const Mesh before = contour_isosurface(field, 0.0);
-  report.area_before = area_of(before);
-  const HandleCut cut = cut_handles(field, 0.0);
-  report.samples_changed = cut.samples_removed;
-  report.method = cut.samples_removed == 0 ? "none" : cut.filled ? "fill" : "cut";
-  report.volume_changed = static_cast<double>(cut.samples_removed) * surface.grid * surface.grid * surface.grid;
-  Mesh after = surface_from_field(field, atoms, surface);
-  report.area_after = area_of(after);
-  return after;
+  const auto before = mesh_components(contour_isosurface(field, 0.0));
+  report.genus_before = before.empty() ? 0 : before.front().genus;
+  report.area_before = before.empty() ? 0 : before.front().area;
+  double largest_radius = 0;
+  for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
+  const double reach = largest_radius + surface.probe + 2 * surface.grid;
+  if (!keep_topology && report.genus_before != 0) {
+    const GenusRepair fix = repair_outer_genus(field, 0.0);
+    report.method = fix.method;
+    report.samples_changed = fix.samples_changed;
+    report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
+    for (const auto& change : fix.per_handle.changes)
+      report.changes.push_back(describe_change(field, change.filled, change.samples, atoms, reach));
+    if (!fix.global.removed_samples.empty())
+      report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples, atoms, reach));
+  }
+  MolecularSurface result;
+  result.mesh = surface_from_field(field, atoms, surface);
+  add_atom_provenance(result.mesh, atoms);
+  result.components = mesh_components(result.mesh);
+  result.reports = describe_components(result.mesh, result.components, atoms);
+  report.area_after = result.components.empty() ? 0 : result.components.front().area;
+  if (report.method == "none") report.area_before = report.area_after;
+  return result;
 }
 
 namespace {
@@ -129,20 +228,36 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
     result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
     result.structure = molecule.report;
     const auto surface_start = std::chrono::steady_clock::now();
-    const Mesh surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
+    MolecularSurface surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
     result.surface_seconds = seconds_since(surface_start);
     MapJobOptions named = options;
     named.prepare.source_name = fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(),
                                             options.surface.probe, options.surface.grid);
-    // The outer surface is the largest piece; cavities and detached pieces are counted in the report.
-    if (named.prepare.component == kComponentRefuse) named.prepare.component = kComponentLargest;
-    const auto prepare_start = std::chrono::steady_clock::now();
-    try {
-      result.prepared = prepare_mesh(surface, named.prepare);
-    } catch (const MeshRefused& e) {
-      throw MeshRefused(std::string(e.what()) +
-                        (options.keep_topology ? ". --keep-topology was given: leave it out to repair the handles" : ""));
+    // The outer surface is the largest piece; cavities and detached pieces are reported, not mapped.
+    std::size_t chosen = 0;
+    if (options.prepare.component >= 0) {
+      chosen = static_cast<std::size_t>(options.prepare.component);
+      if (chosen >= surface.components.size())
+        throw InputError(fmt::format("{}: --component {}: the molecular surface has {} component(s), numbered 0 to {} "
+                                     "by decreasing area",
+                                     named.prepare.source_name, chosen, surface.components.size(),
+                                     surface.components.size() - 1));
     }
+    if (surface.components.empty())
+      throw MeshRefused(fmt::format("{}: the molecular surface is empty", named.prepare.source_name));
+    surface.reports[chosen].mapped = true;
+    result.components = surface.reports;
+    if (surface.components[chosen].genus != 0) {
+      throw MeshRefused(fmt::format(
+          "{}: the {} surface has genus {} ({} handle(s) or tunnel(s)), but a one-to-one map onto a sphere needs genus 0{}",
+          named.prepare.source_name, chosen == 0 ? "outer" : fmt::format("component {} of the", chosen),
+          surface.components[chosen].genus, surface.components[chosen].genus,
+          options.keep_topology ? ". --keep-topology was given: leave it out to repair the handles" : ""));
+    }
+    const Mesh component = extract_component(surface.mesh, surface.components[chosen]);
+    named.prepare.component = kComponentRefuse;
+    const auto prepare_start = std::chrono::steady_clock::now();
+    result.prepared = prepare_mesh(component, named.prepare);
     result.prepare_seconds = seconds_since(prepare_start);
     return named.prepare.source_name;
   }
@@ -195,6 +310,36 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
   return result;
 }
 
+namespace {
+
+nlohmann::json changes_json(const std::vector<HandleChangeReport>& changes) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& c : changes)
+    list.push_back({{"kind", c.kind},
+                    {"samples", c.samples},
+                    {"volume", c.volume},
+                    {"centre", std::vector<double>(c.centre.begin(), c.centre.end())},
+                    {"lining_residues", c.lining_residues}});
+  return list;
+}
+
+nlohmann::json components_json(const std::vector<SurfaceComponentReport>& components) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& c : components)
+    list.push_back({{"kind", c.kind},
+                    {"mapped", c.mapped},
+                    {"vertices", c.vertices},
+                    {"triangles", c.triangles},
+                    {"area", c.area},
+                    {"volume", c.volume},
+                    {"genus", c.genus},
+                    {"residue_count", c.residue_count},
+                    {"residues", c.residues}});
+  return list;
+}
+
+}  // namespace
+
 nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& options) {
   const auto& map = result.map;
   const auto& prep = result.prepared.report;
@@ -238,7 +383,10 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
                               {"volume_changed", result.topology.volume_changed},
                               {"area_before", result.topology.area_before},
                               {"area_after", result.topology.area_after},
-                              {"area_changed_percent", result.topology.area_before > 0 ? 100 * (result.topology.area_after / result.topology.area_before - 1) : 0.0}}}}
+                              {"area_changed_percent", result.topology.area_before > 0 ? 100 * (result.topology.area_after / result.topology.area_before - 1) : 0.0},
+                              {"genus_before", result.topology.genus_before},
+                              {"changes", changes_json(result.topology.changes)}}},
+                            {"components", components_json(result.components)}}
            : nlohmann::json(nullptr)},
       {"mesh",
        {{"vertices", result.prepared.mesh.vertex_count()},
@@ -303,13 +451,21 @@ std::string summary_text(const MapJobResult& result) {
   std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
                                  result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
   if (result.from_structure) {
-    text += fmt::format("  structure: {} atoms; molecular surface: {} component(s), the largest mapped\n", result.atoms,
-                        result.prepared.report.components);
-    if (result.topology.method != "none")
-      text += fmt::format("  handle repair: {} ({} grid samples, {:.1f} Å³), surface area {:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
-                          result.topology.method, result.topology.samples_changed, result.topology.volume_changed,
-                          result.topology.area_before, result.topology.area_after,
-                          100 * (result.topology.area_after / result.topology.area_before - 1));
+    std::int64_t cavities = 0, pieces = 0;
+    for (const auto& c : result.components) cavities += c.kind == "cavity", pieces += c.kind == "piece";
+    text += fmt::format("  structure: {} atoms; molecular surface: outer surface, {} cavities, {} detached pieces "
+                        "(in report.json); the {} is mapped\n",
+                        result.atoms, cavities, pieces,
+                        result.components.empty() || result.components.front().mapped ? "outer surface" : "chosen component");
+    if (result.topology.method != "none") {
+      std::int64_t cuts = 0, fills = 0;
+      for (const auto& c : result.topology.changes) (c.kind == "cut" ? cuts : fills) += 1;
+      text += fmt::format("  handle repair ({}): genus {} -> 0, {} handle(s) cut, {} tunnel(s) filled ({} grid samples, "
+                          "{:.1f} Å³), outer area {:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
+                          result.topology.method, result.topology.genus_before, cuts, fills,
+                          result.topology.samples_changed, result.topology.volume_changed, result.topology.area_before,
+                          result.topology.area_after, 100 * (result.topology.area_after / result.topology.area_before - 1));
+    }
     for (const auto& warning : result.structure.warnings) text += fmt::format("  warning: {}\n", warning);
   }
   text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n", map.method,

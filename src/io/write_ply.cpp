@@ -39,6 +39,23 @@ void check_writable(const Mesh& mesh) {
       throw std::invalid_argument(fmt::format("write_ply: attribute '{}' is both real and integer", name));
     }
   }
+  for (const auto& [name, text] : mesh.text_attributes) {
+    check_name(name);
+    check_size(name, text.codes.size());
+    if (mesh.real_attributes.count(name) != 0 || mesh.integer_attributes.count(name) != 0) {
+      throw std::invalid_argument(fmt::format("write_ply: attribute '{}' is both text and numeric", name));
+    }
+    for (const auto& entry : text.dictionary) {
+      if (entry.size() > 255) {
+        throw std::invalid_argument(fmt::format("write_ply: text attribute '{}' has a value longer than 255 bytes", name));
+      }
+    }
+    for (const auto code : text.codes) {
+      if (code < 0 || static_cast<std::size_t>(code) >= text.dictionary.size()) {
+        throw std::invalid_argument(fmt::format("write_ply: text attribute '{}' has a code outside its dictionary", name));
+      }
+    }
+  }
 }
 
 std::string header(const Mesh& mesh, bool ascii) {
@@ -49,6 +66,7 @@ std::string header(const Mesh& mesh, bool ascii) {
   text += "property double x\nproperty double y\nproperty double z\n";
   for (const auto& [name, values] : mesh.real_attributes) text += fmt::format("property double {}\n", name);
   for (const auto& [name, values] : mesh.integer_attributes) text += fmt::format("property int {}\n", name);
+  for (const auto& [name, values] : mesh.text_attributes) text += fmt::format("property list uchar uchar {}\n", name);
   text += fmt::format("element face {}\n", mesh.triangles.size());
   text += "property list uchar int vertex_indices\n";
   text += "end_header\n";
@@ -73,6 +91,11 @@ void append_binary_body(std::string& out, const Mesh& mesh) {
     for (const double coordinate : mesh.positions[v]) append_little_endian(out, coordinate);
     for (const auto& [name, values] : mesh.real_attributes) append_little_endian(out, values[v]);
     for (const auto& [name, values] : mesh.integer_attributes) append_little_endian(out, values[v]);
+    for (const auto& [name, text] : mesh.text_attributes) {
+      const std::string& value = text.at(v);
+      out.push_back(static_cast<char>(value.size()));
+      out += value;
+    }
   }
   for (const Triangle& triangle : mesh.triangles) {
     out.push_back(static_cast<char>(3));
@@ -88,6 +111,11 @@ void append_ascii_body(std::string& out, const Mesh& mesh) {
     fmt::format_to(sink, "{:.17g} {:.17g} {:.17g}", p[0], p[1], p[2]);
     for (const auto& [name, values] : mesh.real_attributes) fmt::format_to(sink, " {:.17g}", values[v]);
     for (const auto& [name, values] : mesh.integer_attributes) fmt::format_to(sink, " {}", values[v]);
+    for (const auto& [name, text] : mesh.text_attributes) {
+      const std::string& value = text.at(v);
+      fmt::format_to(sink, " {}", value.size());
+      for (const unsigned char c : value) fmt::format_to(sink, " {}", static_cast<unsigned>(c));
+    }
     out.push_back('\n');
   }
   for (const Triangle& t : mesh.triangles) fmt::format_to(sink, "3 {} {} {}\n", t[0], t[1], t[2]);

@@ -444,6 +444,11 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
       auto& out = mesh.integer_attributes[key];
       for (auto v : report.original_vertex) out.push_back(values[v]);
     }
+    for (const auto& [key, text] : attributes_from->text_attributes) {
+      auto& out = mesh.text_attributes[key];
+      out.dictionary = text.dictionary;
+      for (auto v : report.original_vertex) out.codes.push_back(text.codes[v]);
+    }
   }
   result.report = std::move(report);
   return result;

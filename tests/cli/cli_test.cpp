@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/mesh.hpp"
 #include "spheremap/shapes.hpp"
@@ -177,8 +179,11 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   const auto map = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crambin").string());
   ASSERT_EQ(map.exit_code, 0) << map.output;
   EXPECT_NE(map.output.find("327 atoms"), std::string::npos) << map.output;
-  const auto header = slurp(folder_ / "crambin" / "sphere.ply").substr(0, 700);
-  for (const char* property : {"property int atomid", "property int vertex_atom_serial", "property int vertex_residue_number"})
+  const auto header = slurp(folder_ / "crambin" / "sphere.ply").substr(0, 2000);
+  for (const char* property : {"property int atomid", "property int vertex_atom_serial", "property int vertex_residue_number",
+                               "property int vertex_model", "property list uchar uchar vertex_atom_name",
+                               "property list uchar uchar vertex_element", "property list uchar uchar vertex_residue_name",
+                               "property list uchar uchar vertex_insertion_code", "property list uchar uchar vertex_chain"})
     EXPECT_NE(header.find(property), std::string::npos) << property;
   EXPECT_NE(slurp(folder_ / "crambin" / "report.json").find("\"probe\": 1.4"), std::string::npos);
 
@@ -192,8 +197,18 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   const std::string haemoglobin = (pdb / "misc" / "4hhb.cif").string() + " --grid 1.0";
   const auto repaired = run_cli("map " + haemoglobin + " -o " + (folder_ / "hb").string());
   EXPECT_EQ(repaired.exit_code, 0) << repaired.output;
-  EXPECT_NE(repaired.output.find("handle repair:"), std::string::npos) << repaired.output;
-  EXPECT_NE(slurp(folder_ / "hb" / "report.json").find("\"topology_repair\""), std::string::npos);
+  EXPECT_NE(repaired.output.find("handle repair (per-handle): genus 8 -> 0"), std::string::npos) << repaired.output;
+  const auto report = nlohmann::json::parse(slurp(folder_ / "hb" / "report.json"));
+  const auto& repair = report["structure"]["topology_repair"];
+  EXPECT_EQ(repair["genus_before"], 8);
+  EXPECT_EQ(repair["method"], "per-handle");
+  EXPECT_EQ(repair["changes"].size(), 8u);
+  for (const auto& change : repair["changes"]) EXPECT_FALSE(change["lining_residues"].empty()) << change;
+  const auto& components = report["structure"]["components"];
+  ASSERT_GE(components.size(), 1u);
+  EXPECT_EQ(components[0]["kind"], "outer");
+  EXPECT_TRUE(components[0]["mapped"]);
+  EXPECT_EQ(components[0]["genus"], 0);
   const auto kept = run_cli("map " + haemoglobin + " -o " + (folder_ / "hb-kept").string() + " --keep-topology");
   EXPECT_EQ(kept.exit_code, 2) << kept.output;
   EXPECT_NE(kept.output.find("genus 8"), std::string::npos) << kept.output;

@@ -172,6 +172,34 @@ TEST_F(PlyWriter, HeaderListsRealAttributesThenIntegerAttributesInNameOrder) {
   EXPECT_EQ(bytes.size(), expected_header.size() + vertex_bytes + face_bytes);
 }
 
+TEST_F(PlyWriter, TextAttributesAreByteListsThatReadersSkip) {
+  Mesh mesh = tetrahedron_with_attributes();
+  mesh.text_attributes["vertex_atom_name"] = TextAttribute{{"CA", "", "OXT"}, {0, 2, 1, 0}};
+  const std::string header_line = "property list uchar uchar vertex_atom_name\n";
+  for (const bool ascii : {false, true}) {
+    const fs::path path = folder_ / (ascii ? "text-ascii.ply" : "text.ply");
+    write_ply(path, mesh, {.ascii = ascii});
+    const std::string bytes = read_bytes(path);
+    EXPECT_NE(bytes.find("property int label\n" + header_line + "element face 4\n"), std::string::npos);
+    if (ascii) {
+      EXPECT_NE(bytes.find(" 2 67 65\n"), std::string::npos);      // "CA"
+      EXPECT_NE(bytes.find(" 3 79 88 84\n"), std::string::npos);   // "OXT"
+      EXPECT_NE(bytes.find(" 0\n"), std::string::npos);            // ""
+    } else {
+      EXPECT_NE(bytes.find(std::string("\x03OXT", 4)), std::string::npos);
+      const std::size_t header_end = bytes.find("end_header\n") + 11;
+      const std::size_t vertex_bytes = 4 * (5 * 8 + 4) + (1 + 2) * 2 + (1 + 3) + 1;
+      EXPECT_EQ(bytes.size(), header_end + vertex_bytes + 4 * (1 + 3 * 4));
+    }
+    // Our reader (and any PLY reader) steps over list properties of vertices.
+    const PolygonSoup soup = read_polygon_soup(path);
+    expect_positions_bit_exact(soup.positions, mesh.positions);
+    EXPECT_EQ(soup.faces, faces_of(mesh));
+  }
+  mesh.text_attributes["vertex_atom_name"].codes[0] = 7;
+  EXPECT_THROW(write_ply(folder_ / "bad.ply", mesh), std::invalid_argument);
+}
+
 TEST_F(PlyWriter, AsciiWritesSeventeenDigitsAndPlainIntegers) {
   Mesh mesh;
   mesh.positions = {{0.1, 1.0, -0.0}, {0, 1, 0}, {0, 0, 1}};

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "spheremap/surface/grid.hpp"
@@ -27,5 +28,51 @@ struct HandleCut {
 /// Preconditions: some sample > level, every border sample <= level. Throws std::invalid_argument
 /// otherwise. Returns what changed; modifies `field`.
 HandleCut cut_handles(Grid3<double>& field, double level);
+
+/// One local change of a per-handle repair: a connected set of samples moved to the other side.
+struct TopologyChange {
+  bool filled = false;                // true: a tunnel spanned (outside samples made inside); false: a handle cut
+  std::vector<std::int64_t> samples;  // grid indices, ascending
+  std::vector<double> original_values;  // the field at `samples` before the change (for undo)
+  int euler_change = 0;               // change of the solid's Euler characteristic (handles removed)
+};
+
+struct HandleRepair {
+  std::vector<TopologyChange> changes;  // in the order applied
+  std::int64_t samples_changed = 0;
+};
+
+/// Removes handles one at a time, each by the smaller of its two local changes. Both growths of
+/// cut_handles are computed; the samples each leaves out (cut membranes of handles, fill membranes of
+/// tunnels, and whole detached pieces and cavities) are split into connected clusters on the Freudenthal
+/// lattice. Clusters are tried smallest first; one is applied when it raises the Euler characteristic
+/// of the solid (the full subcomplex on inside samples, counted exactly on the 14-neighbour lattice),
+/// i.e. removes a handle without changing the components; pieces and cavities lower it and are left
+/// alone. This is a heuristic: the caller must check the genus of the result and fall back to
+/// cut_handles (undo_handle_repair restores the field). Same preconditions and throws as cut_handles.
+HandleRepair repair_handles(Grid3<double>& field, double level);
+
+/// Restores the field values a repair changed.
+void undo_handle_repair(Grid3<double>& field, const HandleRepair& repair);
+
+}  // namespace spheremap
+
+namespace spheremap {
+
+/// What repair_outer_genus did.
+struct GenusRepair {
+  int outer_genus_before = 0;     // genus of the largest contour component before
+  std::string method = "none";    // "none", "per-handle", or the fallback "fill" / "cut" (cut_handles)
+  HandleRepair per_handle;        // the changes, when method == "per-handle"
+  HandleCut global;               // when method is "fill" or "cut"
+  std::int64_t samples_changed = 0;
+};
+
+/// Makes the largest component of the contour {field = level} (the outer surface of a molecule) genus 0
+/// with the smallest change we can find: repair_handles, checked by contouring; if the largest
+/// component still has handles, the field is restored and cut_handles applied (always genus 0, one
+/// component). Other components (detached pieces, cavities) are left as they are by the per-handle
+/// repair. Same preconditions and throws as cut_handles.
+GenusRepair repair_outer_genus(Grid3<double>& field, double level);
 
 }  // namespace spheremap

@@ -1,0 +1,59 @@
+#include "spheremap/surface/provenance.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace spheremap {
+namespace {
+
+// Builds a dictionary-coded text attribute; codes follow first appearance, so the output is deterministic.
+class TextColumn {
+ public:
+  void push(const std::string& value) {
+    auto [it, inserted] = index_.try_emplace(value, static_cast<std::int32_t>(attribute_.dictionary.size()));
+    if (inserted) attribute_.dictionary.push_back(value);
+    attribute_.codes.push_back(it->second);
+  }
+  TextAttribute take() { return std::move(attribute_); }
+
+ private:
+  TextAttribute attribute_;
+  std::unordered_map<std::string, std::int32_t> index_;
+};
+
+}  // namespace
+
+void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
+  const auto found = mesh.integer_attributes.find("atomid");
+  if (found == mesh.integer_attributes.end()) throw std::invalid_argument("add_atom_provenance: the mesh has no 'atomid' attribute");
+  const auto& atom_of = found->second;
+  std::vector<std::int32_t> serial, residue_number, model;
+  serial.reserve(atom_of.size());
+  residue_number.reserve(atom_of.size());
+  model.reserve(atom_of.size());
+  TextColumn name, element, residue_name, insertion_code, chain;
+  for (const std::int32_t index : atom_of) {
+    if (index < 0 || static_cast<std::size_t>(index) >= atoms.size())
+      throw std::invalid_argument("add_atom_provenance: an 'atomid' is not an index into the atoms");
+    const Atom& atom = atoms[index];
+    serial.push_back(atom.serial);
+    residue_number.push_back(atom.residue_number);
+    model.push_back(atom.model);
+    name.push(atom.name);
+    element.push(atom.element);
+    residue_name.push(atom.residue_name);
+    insertion_code.push(atom.insertion_code == ' ' ? std::string() : std::string(1, atom.insertion_code));
+    chain.push(atom.chain);
+  }
+  mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
+  mesh.integer_attributes["vertex_residue_number"] = std::move(residue_number);
+  mesh.integer_attributes["vertex_model"] = std::move(model);
+  mesh.text_attributes["vertex_atom_name"] = name.take();
+  mesh.text_attributes["vertex_element"] = element.take();
+  mesh.text_attributes["vertex_residue_name"] = residue_name.take();
+  mesh.text_attributes["vertex_insertion_code"] = insertion_code.take();
+  mesh.text_attributes["vertex_chain"] = chain.take();
+}
+
+}  // namespace spheremap

@@ -1,0 +1,95 @@
+#include "spheremap/topology/components.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "spheremap/geometry/vec.hpp"
+
+namespace spheremap {
+namespace {
+
+std::int32_t find_root(std::vector<std::int32_t>& parent, std::int32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+}  // namespace
+
+std::vector<MeshComponent> mesh_components(const Mesh& mesh) {
+  const auto n = static_cast<std::int32_t>(mesh.positions.size());
+  std::vector<std::int32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const auto& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) {
+      const auto a = find_root(parent, t[0]), b = find_root(parent, t[k]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::int32_t> component_of_root(n, -1);
+  std::vector<MeshComponent> components;
+  for (std::int32_t t = 0; t < static_cast<std::int32_t>(mesh.triangles.size()); ++t) {
+    const auto root = find_root(parent, mesh.triangles[t][0]);
+    if (component_of_root[root] < 0) {
+      component_of_root[root] = static_cast<std::int32_t>(components.size());
+      components.emplace_back();
+    }
+    auto& c = components[component_of_root[root]];
+    c.triangles.push_back(t);
+    const auto& tri = mesh.triangles[t];
+    const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &p = mesh.positions[tri[2]];
+    c.area += triangle_area(a, b, p);
+    c.signed_volume += dot(a, cross(b, p)) / 6.0;
+  }
+  // Vertices and edges per component, for the Euler characteristic.
+  std::vector<std::int64_t> vertex_count(components.size(), 0);
+  for (std::int32_t v = 0; v < n; ++v)
+    if (component_of_root[find_root(parent, v)] >= 0) ++vertex_count[component_of_root[find_root(parent, v)]];
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    auto& component = components[c];
+    std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+    edges.reserve(component.triangles.size() * 3);
+    for (const auto t : component.triangles)
+      for (int k = 0; k < 3; ++k) {
+        auto a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+        edges.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    std::sort(edges.begin(), edges.end());
+    const auto edge_count = std::unique(edges.begin(), edges.end()) - edges.begin();
+    component.vertices = vertex_count[c];
+    const std::int64_t euler = component.vertices - edge_count + static_cast<std::int64_t>(component.triangles.size());
+    component.genus = static_cast<int>((2 - euler) / 2);
+  }
+  std::stable_sort(components.begin(), components.end(),
+                   [](const MeshComponent& a, const MeshComponent& b) { return a.area > b.area; });
+  return components;
+}
+
+Mesh extract_component(const Mesh& mesh, const MeshComponent& component) {
+  std::vector<std::int32_t> new_index(mesh.positions.size(), -1);
+  for (const auto t : component.triangles)
+    for (const auto v : mesh.triangles[t]) new_index[v] = 0;
+  std::vector<std::int32_t> kept;
+  for (std::int32_t v = 0; v < static_cast<std::int32_t>(new_index.size()); ++v)
+    if (new_index[v] == 0) new_index[v] = static_cast<std::int32_t>(kept.size()), kept.push_back(v);
+  Mesh out;
+  for (const auto v : kept) out.positions.push_back(mesh.positions[v]);
+  for (const auto t : component.triangles) {
+    const auto& tri = mesh.triangles[t];
+    out.triangles.push_back({new_index[tri[0]], new_index[tri[1]], new_index[tri[2]]});
+  }
+  for (const auto& [name, values] : mesh.real_attributes) {
+    auto& o = out.real_attributes[name];
+    for (const auto v : kept) o.push_back(values[v]);
+  }
+  for (const auto& [name, values] : mesh.integer_attributes) {
+    auto& o = out.integer_attributes[name];
+    for (const auto v : kept) o.push_back(values[v]);
+  }
+  for (const auto& [name, text] : mesh.text_attributes) {
+    auto& o = out.text_attributes[name];
+    o.dictionary = text.dictionary;
+    for (const auto v : kept) o.codes.push_back(text.codes[v]);
+  }
+  return out;
+}
+
+}  // namespace spheremap

@@ -1,0 +1,55 @@
+#include "spheremap/surface/provenance.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace spheremap {
+namespace {
+
+Atom make_atom(std::int32_t serial, const char* name, const char* element, const char* residue, std::int32_t number,
+               char insertion, const char* chain, std::int32_t model) {
+  Atom atom;
+  atom.serial = serial;
+  atom.name = name;
+  atom.element = element;
+  atom.residue_name = residue;
+  atom.residue_number = number;
+  atom.insertion_code = insertion;
+  atom.chain = chain;
+  atom.model = model;
+  return atom;
+}
+
+TEST(Provenance, EveryVertexGetsEveryFieldOfItsAtom) {
+  const std::vector<Atom> atoms = {make_atom(7, "CA", "C", "LYS", 42, ' ', "A", 1),
+                                   make_atom(9, "OG", "O", "SER", 52, 'B', "B", 2)};
+  Mesh mesh;
+  mesh.positions.resize(4);
+  mesh.integer_attributes["atomid"] = {1, 0, 1, 1};
+  add_atom_provenance(mesh, atoms);
+  EXPECT_EQ(mesh.integer_attributes.at("vertex_atom_serial"), (std::vector<std::int32_t>{9, 7, 9, 9}));
+  EXPECT_EQ(mesh.integer_attributes.at("vertex_residue_number"), (std::vector<std::int32_t>{52, 42, 52, 52}));
+  EXPECT_EQ(mesh.integer_attributes.at("vertex_model"), (std::vector<std::int32_t>{2, 1, 2, 2}));
+  const auto text = [&](const char* name, std::size_t v) { return mesh.text_attributes.at(name).at(v); };
+  EXPECT_EQ(text("vertex_atom_name", 0), "OG");
+  EXPECT_EQ(text("vertex_atom_name", 1), "CA");
+  EXPECT_EQ(text("vertex_element", 3), "O");
+  EXPECT_EQ(text("vertex_residue_name", 1), "LYS");
+  EXPECT_EQ(text("vertex_insertion_code", 0), "B");
+  EXPECT_EQ(text("vertex_insertion_code", 1), "");
+  EXPECT_EQ(text("vertex_chain", 2), "B");
+  // Dictionary-coded: two distinct names, not one string per vertex.
+  EXPECT_EQ(mesh.text_attributes.at("vertex_atom_name").dictionary.size(), 2u);
+}
+
+TEST(Provenance, RefusesAMeshWithoutValidAtomIndices) {
+  Mesh mesh;
+  mesh.positions.resize(1);
+  EXPECT_THROW(add_atom_provenance(mesh, {}), std::invalid_argument);
+  mesh.integer_attributes["atomid"] = {3};
+  EXPECT_THROW(add_atom_provenance(mesh, {Atom{}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace spheremap
