@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "spheremap/error.hpp"
 #include "spheremap/io/mesh_io.hpp"
 
 namespace spheremap::cli {
@@ -31,7 +32,12 @@ Command add_surface_command(CLI::App& app) {
             s.structure.apply(s.options);
             const Molecule molecule = read_structure(s.input, s.options.structure);
             TopologyRepair repair;
-            const MolecularSurface result = repaired_surface(molecule.atoms, s.options.surface, s.options.keep_topology, &repair);
+            MolecularSurface result;
+            try {
+              result = repaired_surface(molecule.atoms, s.options.surface, s.options.keep_topology, &repair);
+            } catch (const InputError& e) {
+              throw InputError(fmt::format("{}: {}", s.input, e.what()));
+            }
             const Mesh& surface = result.mesh;
             write_ply(s.output, surface, PlyWriteOptions{s.options.ascii});
             if (!s.quiet) {

@@ -228,7 +228,12 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
     result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
     result.structure = molecule.report;
     const auto surface_start = std::chrono::steady_clock::now();
-    MolecularSurface surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
+    MolecularSurface surface;
+    try {
+      surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", input.string(), e.what()));
+    }
     result.surface_seconds = seconds_since(surface_start);
     MapJobOptions named = options;
     named.prepare.source_name = fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(),

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -136,6 +138,38 @@ TEST_F(Cli, UnreadableInputAndBadOptionsExitOne) {
   const auto poles = run_cli("map " + input + " -o " + folder_.string() + " --poles 1");
   EXPECT_EQ(poles.exit_code, 1) << poles.output;
   EXPECT_NE(poles.output.find("--poles"), std::string::npos);
+}
+
+// Bad structure files: a message naming the file and the problem, exit 1, and nothing written.
+TEST_F(Cli, BadStructureFilesExitOneAndWriteNothing) {
+  const std::string atom = "ATOM      1  CA  ALA A   1       1.000   2.000   3.000  1.00  0.00           C\n";
+  const std::string second = "ATOM      2  CB  ALA A   1       2.000   2.500   3.000  1.00  0.00           C\n";
+  const std::string nan_atom = "ATOM      2  CB  ALA A   1       nan     2.000   3.000  1.00  0.00           C\n";
+  const std::string water = "HETATM    3  O   HOH A   2       5.000   2.000   3.000  1.00  0.00           O\n";
+  std::string binary(2000, '\0');
+  for (std::size_t k = 0; k < binary.size(); ++k) binary[k] = static_cast<char>((k * 7919u) % 251u);
+  const std::vector<std::tuple<std::string, std::string, std::string, std::string>> cases = {
+      {"empty.pdb", "", "", "empty"},
+      {"binary.pdb", binary, "", "no atoms"},
+      {"truncated.cif", "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.Cartn_x\nATOM 1 'unterminated\n", "", "cannot read"},
+      {"one.pdb", atom + "END\n", "", "at least two"},
+      {"nan.pdb", atom + nan_atom + "END\n", "", "nan"},
+      {"waters.pdb", water + "END\n", "", "0 atom(s) left"},
+      {"chains.pdb", atom + second + "END\n", " --chains Z", "Z"},
+      {"budget.pdb", atom + second + "END\n", " --grid 0.05 --probe 400", "--grid"},
+  };
+  for (const auto& [name, contents, options, expected] : cases) {
+    std::ofstream(folder_ / name, std::ios::binary) << contents;
+    const fs::path output = folder_ / ("out-" + name);
+    const auto run = run_cli("map " + (folder_ / name).string() + " -o " + output.string() + options);
+    EXPECT_EQ(run.exit_code, 1) << name << ": " << run.output;
+    EXPECT_NE(run.output.find(name), std::string::npos) << name << ": " << run.output;
+    EXPECT_NE(run.output.find(expected), std::string::npos) << name << ": " << run.output;
+    EXPECT_FALSE(fs::exists(output)) << name;
+    const auto surface = run_cli("surface " + (folder_ / name).string() + " -o " + (folder_ / (name + ".ply")).string() + options);
+    EXPECT_EQ(surface.exit_code, 1) << name << ": " << surface.output;
+    EXPECT_FALSE(fs::exists(folder_ / (name + ".ply"))) << name;
+  }
 }
 
 TEST_F(Cli, PolesAreInputIndicesAndMustBeFarEnoughApart) {
