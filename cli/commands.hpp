@@ -22,6 +22,8 @@ struct Command {
 Command add_map_command(CLI::App& app);
 Command add_surface_command(CLI::App& app);
 Command add_generate_command(CLI::App& app);
+Command add_batch_command(CLI::App& app);
+Command add_table_command(CLI::App& app);
 
 /// Structure and surface options shared by map, surface and batch. Call add() before parsing and
 /// apply() after: apply() fills `options` (chains, hetero, radius table, --preset).

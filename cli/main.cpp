@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
       spheremap::cli::add_map_command(app),
       spheremap::cli::add_surface_command(app),
       spheremap::cli::add_generate_command(app),
+      spheremap::cli::add_batch_command(app),
+      spheremap::cli::add_table_command(app),
   };
 
   try {

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -35,7 +36,7 @@ int parse_component(const std::string& text) {
 }
 
 struct MapState {
-  std::string input, output, weights = "uniform", solver = "direct", poles, component;
+  std::string input, output, weights = "uniform", solver = "direct", poles, component, components = "outer";
   MapJobOptions options;
   StructureCliOptions structure;
   bool no_repair = false, quiet = false;
@@ -58,7 +59,13 @@ Command add_map_command(CLI::App& app) {
       ->check(CLI::IsMember({"direct", "gauss-seidel"}));
   command->add_option("--poles", s.poles,
                       "North and south pole vertices 'i,j': 0-based indices in the input file's vertex order, at least 3 edges apart; default: the two vertices farthest apart");
-  command->add_option("--component", s.component, "With several connected components: 'largest' or a component number");
+  command->add_option("--component", s.component,
+                      "Which connected component to map: 'largest' or a number (meshes: file order, default refuse; "
+                      "structures: by decreasing area, default 0 = the outer surface)");
+  command->add_option("--components", s.components,
+                      "Structures: 'outer' (default: the outer surface; cavities and detached pieces reported) or 'all' "
+                      "(every genus-0 component on its own sphere, in OUTPUT/component-K/, K by decreasing area)")
+      ->check(CLI::IsMember({"outer", "all"}));
   command->add_option("--weld-tolerance", s.options.prepare.weld_tolerance, "Weld vertices closer than this (default 0: exactly coincident only)")
       ->check(CLI::NonNegativeNumber);
   command->add_option("--collapse-floor", s.options.map.collapse_floor,
@@ -77,6 +84,25 @@ Command add_map_command(CLI::App& app) {
             if (!s.poles.empty()) s.options.map.poles = parse_poles(s.poles);
             if (!s.component.empty()) s.options.prepare.component = parse_component(s.component);
             s.options.map.repair = !s.no_repair;
+            if (s.components == "all") {
+              if (!s.component.empty()) throw InputError("--component and --components all exclude each other");
+              const auto results = run_map_job_components(s.input, s.options);
+              if (results.empty())
+                throw MeshRefused(fmt::format("{}: no component of the molecular surface has genus 0 (--keep-topology?)", s.input));
+              int code = 0;
+              for (const auto& result : results) {
+                const auto folder = std::filesystem::path(s.output) / fmt::format("component-{}", result.component_index);
+                write_map_outputs(folder, result, s.options);
+                if (!s.quiet || !result.map.certificate.certified())
+                  std::cout << fmt::format("component {} ({}) -> {}\n", result.component_index,
+                                           result.components[static_cast<std::size_t>(result.component_index)].kind,
+                                           folder.string())
+                            << summary_text(result);
+                if (!result.map.certificate.certified()) code = static_cast<int>(ExitCode::kNotCertified);
+              }
+              if (code != 0) std::cerr << fmt::format("spheremap: {}: SOME COMPONENT MAPS ARE NOT CERTIFIED (see above)\n", s.input);
+              return code;
+            }
             const auto result = run_map_job(s.input, s.options);
             write_map_outputs(s.output, result, s.options);
             if (!s.quiet || !result.map.certificate.certified()) std::cout << summary_text(result);

@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
           libeigen3-dev libsuitesparse-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-          gemmi-dev tao-pegtl-dev zlib1g-dev
+          gemmi-dev tao-pegtl-dev zlib1g-dev libpng-dev
           libopenblas0-serial libgtest-dev libgmock-dev libbenchmark-dev)
 missing=()
 for p in "${packages[@]}"; do

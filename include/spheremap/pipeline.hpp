@@ -89,6 +89,7 @@ struct MapJobResult {
   StructureReport structure;
   TopologyRepair topology;
   std::vector<SurfaceComponentReport> components;  // of the molecular surface; the mapped one flagged
+  std::int64_t component_index = 0;                // which of them was mapped
   double surface_seconds = 0;
   PreparedMesh prepared;
   SphereMap map;
@@ -109,6 +110,12 @@ MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions
 /// and std::invalid_argument if `weights` is empty.
 std::vector<MapJobResult> run_map_jobs(const std::filesystem::path& input, const MapJobOptions& options,
                                        const std::vector<Weights>& weights);
+
+/// A structure file's molecular surface, every closed genus-0 component mapped on its own sphere (the
+/// outer surface first, then pieces and cavities by decreasing area; components of genus > 0 are listed
+/// in each result's `components` but not mapped). The surface is computed once. Throws InputError for a
+/// mesh file (use prepare options there), and as run_map_job.
+std::vector<MapJobResult> run_map_job_components(const std::filesystem::path& input, const MapJobOptions& options);
 
 /// Same, from a mesh in memory (`name` is used in messages and the report).
 MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJobOptions& options);

@@ -216,28 +216,60 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
 
 namespace {
 
+// A structure file to its analysed molecular surface; fills the structure parts of `result`.
+// Returns the name used in messages.
+std::string load_molecular_surface(const std::filesystem::path& input, const MapJobOptions& options,
+                                   MapJobResult& result, MolecularSurface& surface) {
+  result.input = input;
+  const auto start = std::chrono::steady_clock::now();
+  const Molecule molecule = read_structure(input, options.structure);
+  result.read_seconds = seconds_since(start);
+  result.from_structure = true;
+  result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
+  result.structure = molecule.report;
+  const auto surface_start = std::chrono::steady_clock::now();
+  try {
+    surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", input.string(), e.what()));
+  }
+  result.surface_seconds = seconds_since(surface_start);
+  result.components = surface.reports;
+  if (surface.components.empty())
+    throw MeshRefused(fmt::format("{}: the molecular surface is empty", input.string()));
+  return fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(), options.surface.probe,
+                     options.surface.grid);
+}
+
+// Prepares component `chosen` of a molecular surface for mapping (flagged as mapped in the report).
+// Returns the component's name for messages.
+std::string prepare_surface_component(const MolecularSurface& surface, std::size_t chosen, const std::string& name,
+                                      const MapJobOptions& options, MapJobResult& result) {
+  if (surface.components[chosen].genus != 0) {
+    throw MeshRefused(fmt::format(
+        "{}: the {} surface has genus {} ({} handle(s) or tunnel(s)), but a one-to-one map onto a sphere needs genus 0{}",
+        name, chosen == 0 ? "outer" : fmt::format("component {} of the", chosen), surface.components[chosen].genus,
+        surface.components[chosen].genus,
+        options.keep_topology ? ". --keep-topology was given: leave it out to repair the handles" : ""));
+  }
+  for (std::size_t c = 0; c < result.components.size(); ++c) result.components[c].mapped = c == chosen;
+  result.component_index = static_cast<std::int64_t>(chosen);
+  MapJobOptions named = options;
+  named.prepare.source_name = chosen == 0 ? name : fmt::format("{}, component {}", name, chosen);
+  named.prepare.component = kComponentRefuse;
+  const auto prepare_start = std::chrono::steady_clock::now();
+  result.prepared = prepare_mesh(extract_component(surface.mesh, surface.components[chosen]), named.prepare);
+  result.prepare_seconds = seconds_since(prepare_start);
+  return named.prepare.source_name;
+}
+
 // Everything before the map: read (and for structures, the surface and its repair), then prepare.
 // Returns the name used in messages.
 std::string load_and_prepare(const std::filesystem::path& input, const MapJobOptions& options, MapJobResult& result) {
   result.input = input;
   if (is_structure_file(input)) {
-    const auto start = std::chrono::steady_clock::now();
-    const Molecule molecule = read_structure(input, options.structure);
-    result.read_seconds = seconds_since(start);
-    result.from_structure = true;
-    result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
-    result.structure = molecule.report;
-    const auto surface_start = std::chrono::steady_clock::now();
     MolecularSurface surface;
-    try {
-      surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: {}", input.string(), e.what()));
-    }
-    result.surface_seconds = seconds_since(surface_start);
-    MapJobOptions named = options;
-    named.prepare.source_name = fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(),
-                                            options.surface.probe, options.surface.grid);
+    const std::string name = load_molecular_surface(input, options, result, surface);
     // The outer surface is the largest piece; cavities and detached pieces are reported, not mapped.
     std::size_t chosen = 0;
     if (options.prepare.component >= 0) {
@@ -245,26 +277,9 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
       if (chosen >= surface.components.size())
         throw InputError(fmt::format("{}: --component {}: the molecular surface has {} component(s), numbered 0 to {} "
                                      "by decreasing area",
-                                     named.prepare.source_name, chosen, surface.components.size(),
-                                     surface.components.size() - 1));
+                                     name, chosen, surface.components.size(), surface.components.size() - 1));
     }
-    if (surface.components.empty())
-      throw MeshRefused(fmt::format("{}: the molecular surface is empty", named.prepare.source_name));
-    surface.reports[chosen].mapped = true;
-    result.components = surface.reports;
-    if (surface.components[chosen].genus != 0) {
-      throw MeshRefused(fmt::format(
-          "{}: the {} surface has genus {} ({} handle(s) or tunnel(s)), but a one-to-one map onto a sphere needs genus 0{}",
-          named.prepare.source_name, chosen == 0 ? "outer" : fmt::format("component {} of the", chosen),
-          surface.components[chosen].genus, surface.components[chosen].genus,
-          options.keep_topology ? ". --keep-topology was given: leave it out to repair the handles" : ""));
-    }
-    const Mesh component = extract_component(surface.mesh, surface.components[chosen]);
-    named.prepare.component = kComponentRefuse;
-    const auto prepare_start = std::chrono::steady_clock::now();
-    result.prepared = prepare_mesh(component, named.prepare);
-    result.prepare_seconds = seconds_since(prepare_start);
-    return named.prepare.source_name;
+    return prepare_surface_component(surface, chosen, name, options, result);
   }
   const auto start = std::chrono::steady_clock::now();
   const PolygonSoup soup = read_polygon_soup(input);
@@ -278,6 +293,24 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
 }
 
 }  // namespace
+
+std::vector<MapJobResult> run_map_job_components(const std::filesystem::path& input, const MapJobOptions& options) {
+  if (!is_structure_file(input))
+    throw InputError(fmt::format("{}: --components all is for structure files (a mesh's components: --component N)",
+                                 input.string()));
+  MapJobResult base;
+  MolecularSurface surface;
+  const std::string name = load_molecular_surface(input, options, base, surface);
+  std::vector<MapJobResult> results;
+  for (std::size_t c = 0; c < surface.components.size(); ++c) {
+    if (surface.components[c].genus != 0) continue;  // reported in the components list, never mapped
+    MapJobResult result = base;
+    const std::string component_name = prepare_surface_component(surface, c, name, options, result);
+    map_and_measure(result, options, component_name);
+    results.push_back(std::move(result));
+  }
+  return results;
+}
 
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
   MapJobResult result;
@@ -391,7 +424,8 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
                               {"area_changed_percent", result.topology.area_before > 0 ? 100 * (result.topology.area_after / result.topology.area_before - 1) : 0.0},
                               {"genus_before", result.topology.genus_before},
                               {"changes", changes_json(result.topology.changes)}}},
-                            {"components", components_json(result.components)}}
+                            {"components", components_json(result.components)},
+                            {"component_mapped", result.component_index}}
            : nlohmann::json(nullptr)},
       {"mesh",
        {{"vertices", result.prepared.mesh.vertex_count()},

@@ -172,6 +172,39 @@ TEST_F(Cli, BadStructureFilesExitOneAndWriteNothing) {
   }
 }
 
+// A structure with a detached ion: by default the outer surface is mapped and the piece reported; with
+// --components all each closed component gets its own certified sphere.
+TEST_F(Cli, ComponentsOfAMolecularSurface) {
+  const fs::path input = folder_ / "two.pdb";
+  std::ofstream(input) << "ATOM      1  CA  ALA A   1       1.000   2.000   3.000  1.00  0.00           C\n"
+                          "ATOM      2  CB  ALA A   1       2.000   2.500   3.000  1.00  0.00           C\n"
+                          "HETATM    3 ZN    ZN A 101      21.000   2.000   3.000  1.00  0.00          ZN\nEND\n";
+  const auto outer = run_cli("map " + input.string() + " -o " + (folder_ / "outer").string());
+  ASSERT_EQ(outer.exit_code, 0) << outer.output;
+  const auto report = nlohmann::json::parse(slurp(folder_ / "outer" / "report.json"));
+  const auto& components = report["structure"]["components"];
+  ASSERT_EQ(components.size(), 2u);
+  EXPECT_EQ(components[0]["kind"], "outer");
+  EXPECT_TRUE(components[0]["mapped"]);
+  EXPECT_EQ(components[1]["kind"], "piece");
+  EXPECT_FALSE(components[1]["mapped"]);
+  EXPECT_EQ(components[1]["residues"], nlohmann::json::array({"A:ZN101"}));
+  EXPECT_GT(components[0]["area"].get<double>(), components[1]["area"].get<double>());
+
+  const auto all = run_cli("map " + input.string() + " -o " + (folder_ / "all").string() + " --components all");
+  ASSERT_EQ(all.exit_code, 0) << all.output;
+  for (int k = 0; k < 2; ++k) {
+    const auto component = nlohmann::json::parse(slurp(folder_ / "all" / ("component-" + std::to_string(k)) / "report.json"));
+    EXPECT_EQ(component["structure"]["component_mapped"], k);
+    EXPECT_TRUE(component["certificate"]["certified"]);
+    EXPECT_EQ(component["mesh"]["triangles"], components[k]["triangles"]);
+  }
+  const auto piece = run_cli("map " + input.string() + " -o " + (folder_ / "piece").string() + " --component 1");
+  ASSERT_EQ(piece.exit_code, 0) << piece.output;
+  EXPECT_EQ(run_cli("map " + input.string() + " -o " + (folder_ / "none").string() + " --component 2").exit_code, 1);
+  EXPECT_FALSE(fs::exists(folder_ / "none"));
+}
+
 TEST_F(Cli, PolesAreInputIndicesAndMustBeFarEnoughApart) {
   const Mesh ico = make_icosphere(2);
   const auto input = write_obj(folder_ / "ico.obj", ico);
