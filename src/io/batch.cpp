@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <glob.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -150,8 +151,13 @@ void expand_argument(const std::string& argument, const fs::path& base, int dept
 // ---------------------------------------------------------------------------------------------------
 // Run folders
 
+// Written after report.json by the process that mapped the input: {"peak_rss_mb": ...}. Optional: a run
+// is complete without it (its column is then empty).
+constexpr const char* kRunResourcesFile = "resources.json";
+
 const std::vector<std::string>& run_file_names() {
-  static const std::vector<std::string> names = {"surface.ply", "sphere.ply", kRunReportFile, kRunErrorFile};
+  static const std::vector<std::string> names = {"surface.ply", "sphere.ply", kRunReportFile, kRunErrorFile,
+                                                 kRunResourcesFile};
   return names;
 }
 
@@ -185,7 +191,7 @@ void clear_run_folder(const fs::path& folder) {
   if (!fs::is_directory(folder, ec)) return;
   remove_leftover_temporaries(folder, run_file_names());
   // report.json first: from then on the folder is pending whatever happens next.
-  for (const char* name : {kRunReportFile, kRunErrorFile, "surface.ply", "sphere.ply"}) {
+  for (const char* name : {kRunReportFile, kRunErrorFile, kRunResourcesFile, "surface.ply", "sphere.ply"}) {
     fs::remove(folder / name, ec);
     if (ec)
       throw InputError(fmt::format("{}: cannot remove it ({}); check the permissions of the output folder",
@@ -417,6 +423,7 @@ const std::vector<std::string>& summary_columns() {
     c.emplace_back("octant_rms_deviation_percent");
     c.emplace_back("split_edges");
     for (const char* column : kTimingColumns) c.emplace_back(column);
+    c.emplace_back("peak_rss_mb");
     return c;
   }();
   return columns;
@@ -470,6 +477,11 @@ Json summary_row(const BatchInput& input, Weights weights, const fs::path& root,
     row["seconds_map"] = std::round(map * 1e6) / 1e6;
     row["seconds_metrics"] = at(timings, {"metrics"});
     row["seconds_total"] = std::round(total * 1e6) / 1e6;
+  }
+  std::ifstream resources(folder / kRunResourcesFile);
+  if (resources) {
+    const Json parsed = Json::parse(resources, nullptr, false);
+    if (parsed.is_object() && parsed.contains("peak_rss_mb")) row["peak_rss_mb"] = parsed["peak_rss_mb"];
   }
   return row;
 }
@@ -769,6 +781,17 @@ BatchResult run_batch(const fs::path& root, const std::vector<BatchInput>& input
           [&] { write_map_outputs(batch_run_folder(root, input, weights, pending[j]), results[j], weighted); });
       results[j] = MapJobResult{};  // free the mesh and the map early
       if (written) record_error(pending[j], *written);
+    }
+    // Peak memory of the process that mapped this input (meaningful with isolation: one input per process).
+    if (!failure && options.isolate) {
+      rusage usage{};
+      ::getrusage(RUSAGE_SELF, &usage);
+      const double megabytes = std::round(static_cast<double>(usage.ru_maxrss) / 1024.0 * 10) / 10;
+      for (const auto k : pending) {
+        const auto folder = batch_run_folder(root, input, weights, k);
+        if (run_status(folder) == RunStatus::kPending || run_status(folder) == RunStatus::kError) continue;
+        capture([&] { write_file_atomically(folder / kRunResourcesFile, Json{{"peak_rss_mb", megabytes}}.dump() + "\n"); });
+      }
     }
   };
 

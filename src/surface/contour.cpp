@@ -1,20 +1,29 @@
 #include "spheremap/surface/contour.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <memory>
 #include <stdexcept>
-#include <unordered_map>
 
+#include "parallel.hpp"
 #include "spheremap/geometry/vec.hpp"
 
 namespace spheremap {
 namespace {
 
-// Corners of a cell as offsets; the Freudenthal tetrahedra walk from corner 0 to corner 7 adding one
-// axis at a time, in each of the six axis orders.
+// Corners of a cell as offsets (corner c = x + 2y + 4z); the Freudenthal tetrahedra walk from corner 0
+// to corner 7 adding one axis at a time, in each of the six axis orders.
 constexpr std::array<std::array<int, 3>, 8> kCorner = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
                                                          {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
 constexpr std::array<std::array<int, 4>, 6> kTetrahedra = {{{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
                                                             {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}}};
+// The seven lattice edges leaving a sample upwards: +x, +y, +z, +x+y, +x+z, +y+z, +x+y+z. Every edge of a
+// Freudenthal tetrahedron joins a corner to one whose axes include its own, so it is one of these.
+constexpr std::array<std::array<int, 3>, 7> kEdgeOffset = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0},
+                                                            {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
+constexpr std::array<int, 8> kEdgeTypeOfAxes = {-1, 0, 1, 3, 2, 4, 5, 6};  // axis bits (x=1, y=2, z=4) -> type
 
 // Where the surface passes within this fraction of a step of a sample, its vertex is kept at this fraction:
 // vertices closer to a sample make sliver triangles of almost no area, whose area ratios dominate any
@@ -23,80 +32,283 @@ constexpr std::array<std::array<int, 4>, 6> kTetrahedra = {{{0, 1, 3, 7}, {0, 1,
 // area moved from -0.82% to -0.37% of MSMS's (0.2 overshoots to +1.5%).
 constexpr double kMinimumFraction = 0.1;
 
+// Bits set in a byte, by table (std::popcount is a library call without -mpopcnt).
+constexpr std::array<std::uint8_t, 256> kBitCount = [] {
+  std::array<std::uint8_t, 256> count{};
+  for (int b = 0; b < 256; ++b) count[b] = static_cast<std::uint8_t>(std::popcount(static_cast<unsigned>(b)));
+  return count;
+}();
+
+// An edge of a cell: its lower corner and its type (kEdgeOffset).
+struct CellEdge {
+  std::uint8_t corner, type;
+};
+struct CellCase {
+  int triangles = 0;
+  std::array<std::array<CellEdge, 3>, 12> edges{};
+};
+
+// For every pattern of inside corners (bit c: corner c inside), the triangles of the six tetrahedra, in
+// tetrahedron order, each turned so that its normal points away from an inside corner (decided on edge
+// midpoints of the unit cell, which are never degenerate; the grid is uniform, so this is the
+// orientation in space too).
+const std::array<CellCase, 256>& cell_cases() {
+  static const std::array<CellCase, 256> table = [] {
+    std::array<CellCase, 256> cases{};
+    auto corner_point = [](int c) { return Vec3{double(kCorner[c][0]), double(kCorner[c][1]), double(kCorner[c][2])}; };
+    for (int mask = 0; mask < 256; ++mask) {
+      CellCase& cell = cases[mask];
+      auto emit = [&](std::array<std::pair<int, int>, 3> edges, int from) {
+        Vec3 mid[3];
+        for (int e = 0; e < 3; ++e) mid[e] = 0.5 * (corner_point(edges[e].first) + corner_point(edges[e].second));
+        const Vec3 normal = cross(mid[1] - mid[0], mid[2] - mid[0]);
+        if (dot(normal, mid[0] - corner_point(from)) < 0) std::swap(edges[1], edges[2]);
+        auto& out = cell.edges[cell.triangles++];
+        for (int e = 0; e < 3; ++e) {
+          const int lower = std::min(edges[e].first, edges[e].second), upper = std::max(edges[e].first, edges[e].second);
+          out[e] = {static_cast<std::uint8_t>(lower), static_cast<std::uint8_t>(kEdgeTypeOfAxes[upper & ~lower])};
+        }
+      };
+      for (const auto& tet : kTetrahedra) {
+        std::array<int, 4> in{}, out{};
+        int n_in = 0, n_out = 0;
+        for (int v : tet) ((mask >> v) & 1 ? in[n_in++] : out[n_out++]) = v;
+        if (n_in == 0 || n_out == 0) continue;
+        if (n_in == 1) {
+          emit({{{in[0], out[0]}, {in[0], out[1]}, {in[0], out[2]}}}, in[0]);
+        } else if (n_in == 3) {
+          emit({{{in[0], out[0]}, {in[1], out[0]}, {in[2], out[0]}}}, in[0]);
+        } else {
+          // A quad on edges (in0,out0) (in0,out1) (in1,out1) (in1,out0), split along one diagonal.
+          emit({{{in[0], out[0]}, {in[0], out[1]}, {in[1], out[1]}}}, in[0]);
+          emit({{{in[0], out[0]}, {in[1], out[1]}, {in[1], out[0]}}}, in[1]);
+        }
+      }
+    }
+    return cases;
+  }();
+  return table;
+}
+
+template <typename T>
+class Contour {
+ public:
+  Contour(const Grid3<T>& field, double level, int threads)
+      : field_(field), level_(level), threads_(detail::surface_threads(threads)), nx_(field.size[0]), ny_(field.size[1]),
+        nz_(field.size[2]), plane_(nx_ * ny_) {}
+
+  Mesh run() {
+    if (nx_ < 2 || ny_ < 2 || nz_ < 2) throw std::invalid_argument("contour_isosurface: the grid needs at least 2 samples per axis");
+    find_active_rows();
+    check_border();
+    // Pass 1: vertices (crossing edges) owned by each plane and triangles of each cell layer.
+    std::vector<std::int64_t> vertex_start(static_cast<std::size_t>(nz_) + 1, 0), triangle_start(static_cast<std::size_t>(nz_) + 1, 0);
+    const auto& cases = cell_cases();
+    std::vector<std::unique_ptr<Planes>> buffers(static_cast<std::size_t>(threads_));
+    auto planes_of = [&](int worker) -> Planes& {
+      auto& p = buffers[static_cast<std::size_t>(worker)];
+      if (!p) p = std::make_unique<Planes>(plane_);
+      return *p;
+    };
+    detail::parallel_chunks(nz_, threads_, [&](std::int64_t k, int worker) {
+      Planes& planes = planes_of(worker);
+      signs(k, planes.sign[0]);
+      if (k + 1 < nz_) signs(k + 1, planes.sign[1]);
+      masks(k, planes.sign[0], planes.sign[1], planes.mask[0]);
+      std::int64_t vertices = 0, triangles = 0;
+      for (std::int64_t s = 0; s < plane_; ++s) vertices += kBitCount[planes.mask[0][s]];
+      if (k + 1 < nz_)
+        for_cells(k, planes.sign[0], planes.sign[1], [&](std::int64_t, std::int64_t, int mask) { triangles += cases[mask].triangles; });
+      vertex_start[k + 1] = vertices;
+      triangle_start[k + 1] = triangles;
+    });
+    for (std::int64_t k = 0; k < nz_; ++k) vertex_start[k + 1] += vertex_start[k], triangle_start[k + 1] += triangle_start[k];
+    if (vertex_start[nz_] > std::numeric_limits<std::int32_t>::max())
+      throw std::invalid_argument("contour_isosurface: more than 2^31 vertices; use a coarser grid");
+    Mesh mesh;
+    mesh.positions.resize(static_cast<std::size_t>(vertex_start[nz_]));
+    mesh.triangles.resize(static_cast<std::size_t>(triangle_start[nz_]));
+    // Pass 2: positions and triangles, written at offsets known from pass 1, a slab of planes per chunk.
+    constexpr std::int64_t kSlab = 4;
+    detail::parallel_chunks((nz_ + kSlab - 1) / kSlab, threads_, [&](std::int64_t chunk, int worker) {
+      const std::int64_t k0 = chunk * kSlab, k1 = std::min(nz_, k0 + kSlab);
+      Planes& planes = planes_of(worker);
+      // planes.*[0]: plane k, [1]: plane k + 1, sign[2]: plane k + 2.
+      signs(k0, planes.sign[0]);
+      if (k0 + 1 < nz_) signs(k0 + 1, planes.sign[1]);
+      masks(k0, planes.sign[0], planes.sign[1], planes.mask[0]);
+      firsts(k0, planes.mask[0], vertex_start[k0], planes.first[0]);
+      for (std::int64_t k = k0; k < k1; ++k) {
+        if (k + 1 < nz_) {
+          if (k + 2 < nz_) signs(k + 2, planes.sign[2]);
+          masks(k + 1, planes.sign[1], planes.sign[2], planes.mask[1]);
+          firsts(k + 1, planes.mask[1], vertex_start[k + 1], planes.first[1]);
+        }
+        write_positions(k, planes.mask[0], vertex_start[k], mesh.positions);
+        if (k + 1 < nz_) {
+          std::int64_t next = triangle_start[k];
+          for_cells(k, planes.sign[0], planes.sign[1], [&](std::int64_t i, std::int64_t j, int mask) {
+            const CellCase& cell = cases[mask];
+            for (int t = 0; t < cell.triangles; ++t) {
+              Triangle& out = mesh.triangles[static_cast<std::size_t>(next++)];
+              for (int e = 0; e < 3; ++e) {
+                const CellEdge edge = cell.edges[t][e];
+                const int c = edge.corner;
+                const std::size_t layer = (c >> 2) & 1;
+                const std::int64_t s = (j + ((c >> 1) & 1)) * nx_ + i + (c & 1);
+                const unsigned below = planes.mask[layer][s] & ((1u << edge.type) - 1u);
+                out[e] = static_cast<std::int32_t>(planes.first[layer][s] + kBitCount[below]);
+              }
+            }
+          });
+        }
+        std::swap(planes.sign[0], planes.sign[1]);
+        std::swap(planes.sign[1], planes.sign[2]);
+        std::swap(planes.mask[0], planes.mask[1]);
+        std::swap(planes.first[0], planes.first[1]);
+      }
+    });
+    return mesh;
+  }
+
+ private:
+  struct Planes {
+    explicit Planes(std::int64_t n) {
+      for (auto& s : sign) s.assign(static_cast<std::size_t>(n), 0);
+      for (auto& m : mask) m.assign(static_cast<std::size_t>(n), 0);
+      for (auto& f : first) f.assign(static_cast<std::size_t>(n), 0);
+    }
+    std::array<std::vector<std::uint8_t>, 3> sign;
+    std::array<std::vector<std::uint8_t>, 2> mask;
+    std::array<std::vector<std::int64_t>, 2> first;
+  };
+
+  bool inside(std::int64_t s) const { return static_cast<double>(field_.values[static_cast<std::size_t>(s)]) > level_; }
+
+  // Rows (j, k) holding an inside sample; everything else is skipped.
+  void find_active_rows() {
+    row_active_.assign(static_cast<std::size_t>(ny_ * nz_), 0);
+    detail::parallel_chunks(nz_, threads_, [&](std::int64_t k, int) {
+      for (std::int64_t j = 0; j < ny_; ++j) {
+        const std::int64_t start = k * plane_ + j * nx_;
+        bool any = false;
+        for (std::int64_t i = 0; i < nx_ && !any; ++i) any = inside(start + i);
+        row_active_[static_cast<std::size_t>(k * ny_ + j)] = any;
+      }
+    });
+  }
+  bool row_active(std::int64_t j, std::int64_t k) const {
+    return j < ny_ && k < nz_ && row_active_[static_cast<std::size_t>(k * ny_ + j)];
+  }
+  // Whether rows j, j + 1 of planes k, k + 1 hold an inside sample (the rows the cells and upward edges
+  // of row (j, k) touch).
+  bool group_active(std::int64_t j, std::int64_t k) const {
+    return row_active(j, k) || row_active(j + 1, k) || row_active(j, k + 1) || row_active(j + 1, k + 1);
+  }
+
+  void check_border() const {
+    bool bad = false;
+    for (std::int64_t k = 0; k < nz_ && !bad; ++k)
+      for (std::int64_t j = 0; j < ny_ && !bad; ++j) {
+        if (!row_active(j, k)) continue;
+        const std::int64_t start = k * plane_ + j * nx_;
+        bad = k == 0 || k == nz_ - 1 || j == 0 || j == ny_ - 1 || inside(start) || inside(start + nx_ - 1);
+      }
+    if (bad) throw std::invalid_argument("contour_isosurface: the surface reaches the border of the grid; pad the grid");
+  }
+
+  void signs(std::int64_t k, std::vector<std::uint8_t>& out) const {
+    for (std::int64_t j = 0; j < ny_; ++j) {
+      std::uint8_t* row = out.data() + j * nx_;
+      if (!row_active(j, k)) {
+        std::memset(row, 0, static_cast<std::size_t>(nx_));
+        continue;
+      }
+      const T* values = field_.values.data() + k * plane_ + j * nx_;
+      for (std::int64_t i = 0; i < nx_; ++i) row[i] = static_cast<double>(values[i]) > level_;
+    }
+  }
+
+  // Bit e of mask[s]: the edge of type e from sample s of plane k crosses the level.
+  void masks(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above,
+             std::vector<std::uint8_t>& out) const {
+    for (std::int64_t j = 0; j < ny_; ++j) {
+      std::uint8_t* row = out.data() + j * nx_;
+      if (!group_active(j, k)) {
+        std::memset(row, 0, static_cast<std::size_t>(nx_));
+        continue;
+      }
+      for (std::int64_t i = 0; i < nx_; ++i) {
+        const std::uint8_t own = here[j * nx_ + i];
+        unsigned bits = 0;
+        for (int e = 0; e < 7; ++e) {
+          const auto& o = kEdgeOffset[e];
+          if (i + o[0] >= nx_ || j + o[1] >= ny_ || k + o[2] >= nz_) continue;
+          const auto& plane = o[2] ? above : here;
+          if (plane[(j + o[1]) * nx_ + i + o[0]] != own) bits |= 1u << e;
+        }
+        row[i] = static_cast<std::uint8_t>(bits);
+      }
+    }
+  }
+
+  // first[s]: the index of the first vertex of sample s of plane k (vertices are numbered by sample,
+  // then by edge type).
+  void firsts(std::int64_t k, const std::vector<std::uint8_t>& mask, std::int64_t start, std::vector<std::int64_t>& out) const {
+    std::int64_t next = start;
+    for (std::int64_t j = 0; j < ny_; ++j) {
+      if (!group_active(j, k)) continue;  // no crossing edge in this row: never looked up
+      for (std::int64_t i = 0; i < nx_; ++i) {
+        const auto s = j * nx_ + i;
+        out[s] = next;
+        next += kBitCount[mask[s]];
+      }
+    }
+  }
+
+  void write_positions(std::int64_t k, const std::vector<std::uint8_t>& mask, std::int64_t start, std::vector<Vec3>& positions) const {
+    std::int64_t next = start;
+    for (std::int64_t j = 0; j < ny_; ++j) {
+      if (!group_active(j, k)) continue;
+      for (std::int64_t i = 0; i < nx_; ++i) {
+        unsigned bits = mask[j * nx_ + i];
+        while (bits) {
+          const int e = std::countr_zero(bits);
+          bits &= bits - 1;
+          const auto& o = kEdgeOffset[e];
+          const std::int64_t a = field_.index(i, j, k), b = field_.index(i + o[0], j + o[1], k + o[2]);
+          const double fa = field_.values[static_cast<std::size_t>(a)], fb = field_.values[static_cast<std::size_t>(b)];
+          const double t = std::clamp((level_ - fa) / (fb - fa), kMinimumFraction, 1 - kMinimumFraction);
+          const Vec3 pa = field_.point(i, j, k), pb = field_.point(i + o[0], j + o[1], k + o[2]);
+          positions[static_cast<std::size_t>(next++)] = pa + t * (pb - pa);
+        }
+      }
+    }
+  }
+
+  // visit(i, j, mask) for every cell of layer k (between planes k and k + 1) with corners on both sides.
+  template <typename Visit>
+  void for_cells(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above, Visit&& visit) const {
+    for (std::int64_t j = 0; j + 1 < ny_; ++j) {
+      if (!group_active(j, k)) continue;
+      const std::uint8_t *h0 = here.data() + j * nx_, *h1 = h0 + nx_, *a0 = above.data() + j * nx_, *a1 = a0 + nx_;
+      for (std::int64_t i = 0; i + 1 < nx_; ++i) {
+        const int mask = h0[i] | h0[i + 1] << 1 | h1[i] << 2 | h1[i + 1] << 3 | a0[i] << 4 | a0[i + 1] << 5 | a1[i] << 6 | a1[i + 1] << 7;
+        if (mask != 0 && mask != 255) visit(i, j, mask);
+      }
+    }
+  }
+
+  const Grid3<T>& field_;
+  double level_;
+  int threads_;
+  std::int64_t nx_, ny_, nz_, plane_;
+  std::vector<std::uint8_t> row_active_;
+};
+
 }  // namespace
 
-Mesh contour_isosurface(const Grid3<double>& field, double level) {
-  const auto [nx, ny, nz] = field.size;
-  if (nx < 2 || ny < 2 || nz < 2) throw std::invalid_argument("contour_isosurface: the grid needs at least 2 samples per axis");
-  auto inside = [&](std::int64_t s) { return field.values[s] > level; };
-  for (std::int64_t k = 0; k < nz; ++k)
-    for (std::int64_t j = 0; j < ny; ++j)
-      for (std::int64_t i = 0; i < nx; ++i) {
-        const bool border = i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1;
-        if (border && inside(field.index(i, j, k)))
-          throw std::invalid_argument("contour_isosurface: the surface reaches the border of the grid; pad the grid");
-      }
-  Mesh mesh;
-  std::unordered_map<std::uint64_t, std::int32_t> vertex_of_edge;
-  auto edge_vertex = [&](std::int64_t a, std::int64_t b) {
-    if (a > b) std::swap(a, b);
-    const auto key = static_cast<std::uint64_t>(a) * 8 + static_cast<std::uint64_t>(b - a == 1 ? 0 : b - a == nx ? 1 : b - a == nx * ny ? 2
-                                                                                   : b - a == nx + 1 ? 3 : b - a == nx * ny + 1 ? 4
-                                                                                   : b - a == nx * ny + nx ? 5 : 6);
-    auto [it, inserted] = vertex_of_edge.emplace(key, static_cast<std::int32_t>(mesh.positions.size()));
-    if (inserted) {
-      const double fa = field.values[a], fb = field.values[b];
-      const double t = std::clamp((level - fa) / (fb - fa), kMinimumFraction, 1 - kMinimumFraction);
-      auto position = [&](std::int64_t s) {
-        const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
-        return field.point(i, j, k);
-      };
-      const Vec3 pa = position(a), pb = position(b);
-      mesh.positions.push_back(pa + t * (pb - pa));
-    }
-    return it->second;
-  };
-  auto sample_point = [&](std::int64_t s) {
-    const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
-    return field.point(i, j, k);
-  };
-  // Emits triangle (a, b, c) on the given edges, turned so that its normal points away from `from`
-  // (an inside sample). Orientation is decided on edge midpoints, which are never degenerate.
-  auto emit = [&](std::array<std::pair<std::int64_t, std::int64_t>, 3> edges, std::int64_t from) {
-    Vec3 mid[3];
-    for (int e = 0; e < 3; ++e) mid[e] = 0.5 * (sample_point(edges[e].first) + sample_point(edges[e].second));
-    const Vec3 normal = cross(mid[1] - mid[0], mid[2] - mid[0]);
-    if (dot(normal, mid[0] - sample_point(from)) < 0) std::swap(edges[1], edges[2]);
-    mesh.triangles.push_back({edge_vertex(edges[0].first, edges[0].second), edge_vertex(edges[1].first, edges[1].second),
-                              edge_vertex(edges[2].first, edges[2].second)});
-  };
-  for (std::int64_t k = 0; k + 1 < nz; ++k)
-    for (std::int64_t j = 0; j + 1 < ny; ++j)
-      for (std::int64_t i = 0; i + 1 < nx; ++i) {
-        std::array<std::int64_t, 8> corner;
-        int inside_count = 0;
-        for (int c = 0; c < 8; ++c) {
-          corner[c] = field.index(i + kCorner[c][0], j + kCorner[c][1], k + kCorner[c][2]);
-          inside_count += inside(corner[c]);
-        }
-        if (inside_count == 0 || inside_count == 8) continue;
-        for (const auto& tet : kTetrahedra) {
-          std::array<std::int64_t, 4> in{}, out{};
-          int n_in = 0, n_out = 0;
-          for (int v : tet) (inside(corner[v]) ? in[n_in++] : out[n_out++]) = corner[v];
-          if (n_in == 0 || n_out == 0) continue;
-          if (n_in == 1) {
-            emit({{{in[0], out[0]}, {in[0], out[1]}, {in[0], out[2]}}}, in[0]);
-          } else if (n_in == 3) {
-            emit({{{in[0], out[0]}, {in[1], out[0]}, {in[2], out[0]}}}, in[0]);
-          } else {
-            // A quad on edges (in0,out0) (in0,out1) (in1,out1) (in1,out0), split along one diagonal.
-            emit({{{in[0], out[0]}, {in[0], out[1]}, {in[1], out[1]}}}, in[0]);
-            emit({{{in[0], out[0]}, {in[1], out[1]}, {in[1], out[0]}}}, in[1]);
-          }
-        }
-      }
-  return mesh;
-}
+Mesh contour_isosurface(const Grid3<double>& field, double level, int threads) { return Contour<double>(field, level, threads).run(); }
+Mesh contour_isosurface(const Grid3<float>& field, double level, int threads) { return Contour<float>(field, level, threads).run(); }
 
 }  // namespace spheremap

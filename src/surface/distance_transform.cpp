@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 
+#include "parallel.hpp"
 #include "spheremap/surface/grid.hpp"
 
 namespace spheremap {
@@ -43,36 +44,81 @@ void transform_line(const double* f, double* d, std::int64_t n, std::vector<std:
   }
 }
 
+// A line needs no work when it is all zero (every sample is its own nearest) or all infinite.
+bool trivial_line(const double* f, std::int64_t n) {
+  const double first = f[0];
+  if (first != 0 && first != kInfinity) return false;
+  for (std::int64_t q = 1; q < n; ++q)
+    if (f[q] != first) return false;
+  return true;
+}
+
+// Lines of one axis are gathered in blocks of this many neighbouring lines (contiguous in memory along
+// axis 0), which keeps the strided passes cache-friendly.
+constexpr std::int64_t kBlock = 16;
+
 }  // namespace
 
-Grid3<double> squared_distance_transform(const Grid3<std::uint8_t>& is_target) {
+template <typename T>
+void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
+  const auto [nx, ny, nz] = grid.size;
+  if (nx <= 0 || ny <= 0 || nz <= 0) return;
+  const int workers = detail::surface_threads(threads);
+  T* values = grid.values.data();
+  const std::int64_t plane = nx * ny;
+  struct Scratch {
+    std::vector<std::int64_t> v;
+    std::vector<double> z, in, out;
+  };
+  std::vector<Scratch> scratch(static_cast<std::size_t>(workers));
+  const std::int64_t longest = std::max({nx, ny, nz});
+  for (auto& s : scratch) s.in.resize(static_cast<std::size_t>(longest * kBlock)), s.out.resize(static_cast<std::size_t>(longest));
+
+  // Axis 0: contiguous rows, one chunk per plane k.
+  detail::parallel_chunks(nz, workers, [&](std::int64_t k, int worker) {
+    auto& s = scratch[static_cast<std::size_t>(worker)];
+    for (std::int64_t j = 0; j < ny; ++j) {
+      T* row = values + k * plane + j * nx;
+      for (std::int64_t q = 0; q < nx; ++q) s.in[q] = static_cast<double>(row[q]);
+      if (trivial_line(s.in.data(), nx)) continue;
+      transform_line(s.in.data(), s.out.data(), nx, s.v, s.z);
+      for (std::int64_t q = 0; q < nx; ++q) row[q] = static_cast<T>(s.out[q]);
+    }
+  });
+  // Axis 1 (stride nx) and axis 2 (stride nx * ny): kBlock neighbouring lines at a time.
+  auto pass = [&](std::int64_t n, std::int64_t stride, std::int64_t outer_count, auto&& start_of) {
+    const std::int64_t blocks_per_outer = (nx + kBlock - 1) / kBlock;
+    detail::parallel_chunks(outer_count, workers, [&](std::int64_t outer, int worker) {
+      auto& s = scratch[static_cast<std::size_t>(worker)];
+      for (std::int64_t b = 0; b < blocks_per_outer; ++b) {
+        const std::int64_t i0 = b * kBlock, width = std::min(kBlock, nx - i0);
+        T* base = values + start_of(outer) + i0;
+        for (std::int64_t q = 0; q < n; ++q)
+          for (std::int64_t w = 0; w < width; ++w) s.in[w * n + q] = static_cast<double>(base[q * stride + w]);
+        for (std::int64_t w = 0; w < width; ++w) {
+          const double* line = s.in.data() + w * n;
+          if (trivial_line(line, n)) continue;
+          transform_line(line, s.out.data(), n, s.v, s.z);
+          for (std::int64_t q = 0; q < n; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
+        }
+      }
+    });
+  };
+  pass(ny, nx, nz, [&](std::int64_t k) { return k * plane; });
+  pass(nz, plane, ny, [&](std::int64_t j) { return j * nx; });
+}
+
+template void squared_distance_transform_in_place<double>(Grid3<double>&, int);
+template void squared_distance_transform_in_place<float>(Grid3<float>&, int);
+
+Grid3<double> squared_distance_transform(const Grid3<std::uint8_t>& is_target, int threads) {
   Grid3<double> out;
   out.size = is_target.size;
   out.origin = is_target.origin;
   out.spacing = is_target.spacing;
   out.values.resize(is_target.values.size());
   for (std::size_t s = 0; s < out.values.size(); ++s) out.values[s] = is_target.values[s] ? 0.0 : kInfinity;
-  const auto [nx, ny, nz] = is_target.size;
-  std::vector<std::int64_t> v;
-  std::vector<double> z;
-  const std::int64_t longest = std::max({nx, ny, nz});
-  std::vector<double> line_in(static_cast<std::size_t>(longest)), line_out(static_cast<std::size_t>(longest));
-  // Pass along each axis in turn; the result after all three is the exact 3D squared distance.
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::int64_t n = is_target.size[axis];
-    const std::int64_t stride = axis == 0 ? 1 : axis == 1 ? nx : nx * ny;
-    const std::int64_t lines = out.count() / n;
-    for (std::int64_t line = 0; line < lines; ++line) {
-      // The first sample of the line: enumerate the two other axes.
-      std::int64_t start;
-      if (axis == 0) start = line * nx;
-      else if (axis == 1) start = (line % nx) + (line / nx) * nx * ny;
-      else start = line;
-      for (std::int64_t q = 0; q < n; ++q) line_in[q] = out.values[start + q * stride];
-      transform_line(line_in.data(), line_out.data(), n, v, z);
-      for (std::int64_t q = 0; q < n; ++q) out.values[start + q * stride] = line_out[q];
-    }
-  }
+  squared_distance_transform_in_place(out, threads);
   return out;
 }
 

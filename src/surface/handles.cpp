@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <stdexcept>
 
@@ -60,12 +61,13 @@ int parts(const Link& link, const std::array<bool, 14>& flag, bool value) {
 // The SES field is flat (-probe) wherever a probe fits, so it cannot order the outside growth; this
 // distance makes the two fronts entering a tunnel meet at its narrowest section, where a fill is smallest.
 std::vector<float> outside_depth(const Grid3<double>& field, double level) {
-  Grid3<std::uint8_t> inside;
-  inside.size = field.size;
-  inside.values.resize(field.values.size());
-  for (std::size_t s = 0; s < field.values.size(); ++s) inside.values[s] = field.values[s] > level ? 1 : 0;
-  const Grid3<double> squared = squared_distance_transform(inside);
-  return std::vector<float>(squared.values.begin(), squared.values.end());
+  Grid3<float> depth;
+  depth.size = field.size;
+  depth.values.resize(field.values.size());
+  for (std::size_t s = 0; s < field.values.size(); ++s)
+    depth.values[s] = field.values[s] > level ? 0.0f : std::numeric_limits<float>::infinity();
+  squared_distance_transform_in_place(depth);
+  return std::move(depth.values);
 }
 
 std::vector<std::uint8_t> grow(const Grid3<double>& field, double level, bool solid) {

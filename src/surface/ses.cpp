@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <unordered_map>
 
 #include <fmt/format.h>
 
+#include "parallel.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/surface/contour.hpp"
@@ -15,44 +15,434 @@
 namespace spheremap {
 namespace {
 
-// Atoms bucketed in cubic cells, for "which atoms are near this point" queries.
-class AtomCells {
+// Atoms bucketed in a dense grid of cubic cells (atoms of a cell in increasing index order).
+class AtomGrid {
  public:
-  AtomCells(const std::vector<Atom>& atoms, double cell) : atoms_(atoms), cell_(cell) {
-    for (std::int32_t a = 0; a < static_cast<std::int32_t>(atoms.size()); ++a) cells_[key(cell_of(atoms[a].position))].push_back(a);
+  AtomGrid(const std::vector<Atom>& atoms, double cell) : atoms_(atoms), cell_(cell) {
+    Vec3 hi = atoms.front().position;
+    lo_ = hi;
+    for (const auto& a : atoms)
+      for (int d = 0; d < 3; ++d) lo_[d] = std::min(lo_[d], a.position[d]), hi[d] = std::max(hi[d], a.position[d]);
+    for (int d = 0; d < 3; ++d) n_[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo_[d]) / cell_)) + 1;
+    start_.assign(static_cast<std::size_t>(n_[0] * n_[1] * n_[2] + 1), 0);
+    std::vector<std::int64_t> cell_of(atoms.size());
+    for (std::size_t a = 0; a < atoms.size(); ++a) {
+      const auto c = cell_index(atoms[a].position);
+      cell_of[a] = c[0] + n_[0] * (c[1] + n_[1] * c[2]);
+      ++start_[static_cast<std::size_t>(cell_of[a]) + 1];
+    }
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    members_.resize(atoms.size());
+    std::vector<std::int32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t a = 0; a < atoms.size(); ++a) members_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[a])]++)] = static_cast<std::int32_t>(a);
   }
-  // Calls visit(atom index) for every atom in the cells within `reach` of p (a superset of the atoms
-  // whose centre is within `reach`).
+
+  // Calls visit(atom index) for every atom in the cells that meet the cube of half-width `reach` around p
+  // (a superset of the atoms whose centre is within `reach`).
   template <typename Visit>
   void near(const Vec3& p, double reach, Visit&& visit) const {
-    const auto c = cell_of(p);
-    const auto span = static_cast<std::int64_t>(std::ceil(reach / cell_));
-    for (std::int64_t dz = -span; dz <= span; ++dz)
-      for (std::int64_t dy = -span; dy <= span; ++dy)
-        for (std::int64_t dx = -span; dx <= span; ++dx) {
-          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-          if (it == cells_.end()) continue;
-          for (auto a : it->second) visit(a);
+    std::array<std::int64_t, 3> first, last;
+    for (int d = 0; d < 3; ++d) {
+      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
+      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
+      if (first[d] > last[d]) return;
+    }
+    for (std::int64_t z = first[2]; z <= last[2]; ++z)
+      for (std::int64_t y = first[1]; y <= last[1]; ++y)
+        for (std::int64_t x = first[0]; x <= last[0]; ++x) {
+          const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
+          for (auto m = start_[c]; m < start_[c + 1]; ++m) visit(members_[static_cast<std::size_t>(m)]);
         }
   }
 
- private:
-  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
-    return {static_cast<std::int64_t>(std::floor(p[0] / cell_)), static_cast<std::int64_t>(std::floor(p[1] / cell_)),
-            static_cast<std::int64_t>(std::floor(p[2] / cell_))};
+  // The atom whose van der Waals sphere is nearest to p: smallest |p - centre| - radius, ties to the
+  // smallest index. `hint` (any atom, e.g. the answer for a nearby point) gives the first bound; the
+  // answer does not depend on it. Only cells that can hold a nearer sphere are visited.
+  [[nodiscard]] std::int32_t nearest_sphere(const Vec3& p, double largest_radius, std::int32_t hint) const {
+    std::int32_t chosen = hint;
+    double best = norm(p - atoms_[hint].position) - atoms_[hint].radius;
+    // An atom can only be nearer if its centre is within best + largest_radius of p.
+    const double reach = best + largest_radius;
+    std::array<std::int64_t, 3> first, last;
+    for (int d = 0; d < 3; ++d) {
+      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
+      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
+      if (first[d] > last[d]) return chosen;
+    }
+    auto gap_along = [&](int d, std::int64_t c) {
+      const double low = lo_[d] + cell_ * static_cast<double>(c), high = low + cell_;
+      return p[d] < low ? low - p[d] : p[d] > high ? p[d] - high : 0.0;
+    };
+    for (std::int64_t z = first[2]; z <= last[2]; ++z) {
+      const double gz = gap_along(2, z);
+      for (std::int64_t y = first[1]; y <= last[1]; ++y) {
+        const double gy = gap_along(1, y), gyz = gy * gy + gz * gz;
+        for (std::int64_t x = first[0]; x <= last[0]; ++x) {
+          const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
+          if (start_[c] == start_[c + 1]) continue;
+          const double gx = gap_along(0, x), bound = best + largest_radius;
+          if (gx * gx + gyz > bound * bound) continue;  // every centre in the cell is farther than bound
+          for (auto m = start_[c]; m < start_[c + 1]; ++m) {
+            const std::int32_t index = members_[static_cast<std::size_t>(m)];
+            const Atom& atom = atoms_[index];
+            const double limit = best + atom.radius;
+            if (squared_distance(p, atom.position) > limit * limit * (1 + 1e-12)) continue;  // gap > best for sure
+            const double gap = norm(p - atom.position) - atom.radius;
+            if (gap < best || (gap == best && index < chosen)) best = gap, chosen = index;
+          }
+        }
+      }
+    }
+    return chosen;
   }
-  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
-    return (static_cast<std::uint64_t>(c[0] & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(c[1] & 0x1FFFFF) << 21) |
-           static_cast<std::uint64_t>(c[2] & 0x1FFFFF);
+
+  // Some atom in the cells around p (the first found), or atom 0.
+  [[nodiscard]] std::int32_t some_atom_near(const Vec3& p) const {
+    const auto home = cell_index(p);
+    for (std::int64_t r = 0; r <= 2; ++r)
+      for (std::int64_t z = std::max<std::int64_t>(0, home[2] - r); z <= std::min(n_[2] - 1, home[2] + r); ++z)
+        for (std::int64_t y = std::max<std::int64_t>(0, home[1] - r); y <= std::min(n_[1] - 1, home[1] + r); ++y)
+          for (std::int64_t x = std::max<std::int64_t>(0, home[0] - r); x <= std::min(n_[0] - 1, home[0] + r); ++x) {
+            const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
+            if (start_[c] < start_[c + 1]) return members_[static_cast<std::size_t>(start_[c])];
+          }
+    return 0;
+  }
+
+ private:
+  std::array<std::int64_t, 3> cell_index(const Vec3& p) const {
+    std::array<std::int64_t, 3> c;
+    for (int d = 0; d < 3; ++d)
+      c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[d] - lo_[d]) / cell_)), 0, n_[d] - 1);
+    return c;
   }
   const std::vector<Atom>& atoms_;
   double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
+  Vec3 lo_{};
+  std::array<std::int64_t, 3> n_{};
+  std::vector<std::int32_t> start_, members_;
 };
 
-}  // namespace
+// floor and ceil for |x| < 2^52 without a libm call (no SSE4.1 rounding in a default build).
+inline std::int64_t floor_int(double x) {
+  const auto t = static_cast<std::int64_t>(x);
+  return static_cast<double>(t) > x ? t - 1 : t;
+}
+inline std::int64_t ceil_int(double x) {
+  const auto t = static_cast<std::int64_t>(x);
+  return static_cast<double>(t) < x ? t + 1 : t;
+}
 
-Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+// Field values while the field is built: probe-centre samples hold 0 (their squared distance), samples
+// inside the SAS +infinity; outside samples not (yet) reached from the border hold kUnreached.
+constexpr double kUnreached = 1;
+
+// Marks inside-the-SAS samples +infinity; every other sample holds kUnreached.
+template <typename T>
+void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, int threads) {
+  const double h = field.spacing;
+  const T inside = std::numeric_limits<T>::infinity();
+  // Plane k belongs to chunk k % threads: every sample is written by one thread only.
+  detail::parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
+    for (const auto& a : atoms) {
+      const double reach = a.radius + probe, reach2 = reach * reach;
+      const auto first = [&](int d) { return std::max<std::int64_t>(0, ceil_int((a.position[d] - reach - field.origin[d]) / h)); };
+      const auto last = [&](int d) { return std::min<std::int64_t>(field.size[d] - 1, floor_int((a.position[d] + reach - field.origin[d]) / h)); };
+      const std::int64_t i_first = first(0), i_last = last(0);
+      std::int64_t k = first(2);
+      k += ((chunk - k) % threads + threads) % threads;
+      for (; k <= last(2); k += threads)
+        for (std::int64_t j = first(1); j <= last(1); ++j) {
+          const Vec3 row = field.point(0, j, k);
+          const double dy = row[1] - a.position[1], dz = row[2] - a.position[2], rest = reach2 - (dy * dy + dz * dz);
+          if (rest < -1e-9 * reach2) continue;
+          const double half = std::sqrt(std::max(0.0, rest));
+          const std::int64_t i0 = std::max(i_first, ceil_int((a.position[0] - half - field.origin[0]) / h) - 1);
+          const std::int64_t i1 = std::min(i_last, floor_int((a.position[0] + half - field.origin[0]) / h) + 1);
+          T* values = field.values.data() + field.index(0, j, k);
+          for (std::int64_t i = i0; i <= i1; ++i)
+            if (squared_distance(field.point(i, j, k), a.position) < reach2) values[i] = inside;
+        }
+    }
+  });
+}
+
+// Outside samples connected to the grid border become probe centres (0); the others (enclosed pockets)
+// +infinity, or probe centres too with carve_cavities. Scan-line flood fill: memory for pending runs only.
+template <typename T>
+void flood_from_border(Grid3<T>& field, bool carve_cavities, int threads) {
+  const auto [nx, ny, nz] = field.size;
+  T* values = field.values.data();
+  const T unreached = static_cast<T>(kUnreached);
+  if (!carve_cavities) {
+    std::vector<std::int64_t> pending;
+    auto flood = [&](std::int64_t seed) {
+      if (values[seed] != unreached) return;
+      pending.push_back(seed);
+      while (!pending.empty()) {
+        const std::int64_t s = pending.back();
+        pending.pop_back();
+        if (values[s] != unreached) continue;
+        const std::int64_t i = s % nx, row = s - i, j = (s / nx) % ny, k = s / (nx * ny);
+        std::int64_t left = i, right = i;
+        while (left > 0 && values[row + left - 1] == unreached) --left;
+        while (right + 1 < nx && values[row + right + 1] == unreached) ++right;
+        for (std::int64_t x = left; x <= right; ++x) values[row + x] = 0;
+        const std::int64_t neighbours[4] = {j > 0 ? row - nx : -1, j + 1 < ny ? row + nx : -1, k > 0 ? row - nx * ny : -1,
+                                            k + 1 < nz ? row + nx * ny : -1};
+        for (const auto other : neighbours) {
+          if (other < 0) continue;
+          for (std::int64_t x = left; x <= right; ++x)
+            if (values[other + x] == unreached && (x == left || values[other + x - 1] != unreached)) pending.push_back(other + x);
+        }
+      }
+    };
+    for (std::int64_t k = 0; k < nz; ++k)
+      for (std::int64_t j = 0; j < ny; ++j) {
+        const std::int64_t row = field.index(0, j, k);
+        if (k == 0 || k == nz - 1 || j == 0 || j == ny - 1) {
+          for (std::int64_t i = 0; i < nx; ++i) flood(row + i);
+        } else {
+          flood(row);
+          flood(row + nx - 1);
+        }
+      }
+  }
+  const T pocket = carve_cavities ? T(0) : std::numeric_limits<T>::infinity();
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    T* plane = values + k * nx * ny;
+    for (std::int64_t s = 0; s < nx * ny; ++s)
+      if (plane[s] == unreached) plane[s] = pocket;
+  });
+}
+
+// Probe centres on the SAS surface (see solvent_excluded_field), in grid coordinates.
+template <typename T>
+std::vector<Vec3> surface_probe_centres(const Grid3<T>& field, const std::vector<Atom>& atoms, double probe, int threads) {
+  const double h = field.spacing;
+  const auto [nx, ny, nz] = field.size;
+  const auto count = static_cast<std::int32_t>(atoms.size());
+  double largest_reach = 0;
+  std::vector<double> reach(atoms.size()), reach2(atoms.size());
+  for (std::size_t a = 0; a < atoms.size(); ++a) {
+    reach[a] = atoms[a].radius + probe;
+    reach2[a] = reach[a] * reach[a];
+    largest_reach = std::max(largest_reach, reach[a]);
+  }
+  // Overlapping enlarged spheres, by atom (ascending): only these can cover a point of an atom's sphere.
+  const AtomGrid grid(atoms, largest_reach);
+  constexpr std::int32_t kAtomsPerChunk = 64;
+  const std::int64_t chunks = (count + kAtomsPerChunk - 1) / kAtomsPerChunk;
+  std::vector<std::vector<std::int32_t>> chunk_neighbours(static_cast<std::size_t>(chunks));
+  std::vector<std::int64_t> neighbour_start(atoms.size() + 1, 0);
+  detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
+    auto& out = chunk_neighbours[static_cast<std::size_t>(chunk)];
+    std::vector<std::int32_t> found;
+    for (std::int32_t i = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; i < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++i) {
+      found.clear();
+      grid.near(atoms[i].position, reach[i] + largest_reach, [&](std::int32_t j) {
+        if (j != i && norm(atoms[j].position - atoms[i].position) < reach[i] + reach[j]) found.push_back(j);
+      });
+      std::sort(found.begin(), found.end());
+      out.insert(out.end(), found.begin(), found.end());
+      neighbour_start[static_cast<std::size_t>(i) + 1] = static_cast<std::int64_t>(found.size());
+    }
+  });
+  for (std::size_t a = 0; a < atoms.size(); ++a) neighbour_start[a + 1] += neighbour_start[a];
+  std::vector<std::int32_t> neighbours;
+  neighbours.reserve(static_cast<std::size_t>(neighbour_start.back()));
+  for (auto& part : chunk_neighbours) neighbours.insert(neighbours.end(), part.begin(), part.end()), std::vector<std::int32_t>().swap(part);
+
+  // Whether p (on the sphere of `self`) is strictly inside another enlarged sphere, `excluded` aside.
+  // `hint` remembers the last covering atom: neighbouring points are mostly covered by the same one.
+  auto covered = [&](const Vec3& p, std::int32_t self, std::int32_t excluded, std::int32_t& hint) {
+    if (hint >= 0 && hint != self && hint != excluded && squared_distance(p, atoms[hint].position) < reach2[hint]) return true;
+    for (auto m = neighbour_start[self]; m < neighbour_start[self + 1]; ++m) {
+      const std::int32_t other = neighbours[static_cast<std::size_t>(m)];
+      if (other != excluded && squared_distance(p, atoms[other].position) < reach2[other]) {
+        hint = other;
+        return true;
+      }
+    }
+    return false;
+  };
+  // A centre on the SAS surface counts when a carving sample (0) is among the 27 around its nearest sample.
+  auto connected = [&](const Vec3& unit) {
+    const auto ci = static_cast<std::int64_t>(std::llround(unit[0]));
+    const auto cj = static_cast<std::int64_t>(std::llround(unit[1]));
+    const auto ck = static_cast<std::int64_t>(std::llround(unit[2]));
+    for (std::int64_t c = std::max<std::int64_t>(0, ck - 1); c <= std::min(nz - 1, ck + 1); ++c)
+      for (std::int64_t b = std::max<std::int64_t>(0, cj - 1); b <= std::min(ny - 1, cj + 1); ++b)
+        for (std::int64_t a = std::max<std::int64_t>(0, ci - 1); a <= std::min(nx - 1, ci + 1); ++a)
+          if (field.values[static_cast<std::size_t>(field.index(a, b, c))] == T(0)) return true;
+    return false;
+  };
+  auto to_grid = [&](const Vec3& p) { return Vec3{(p[0] - field.origin[0]) / h, (p[1] - field.origin[1]) / h, (p[2] - field.origin[2]) / h}; };
+
+  std::vector<std::vector<Vec3>> chunk_centres(static_cast<std::size_t>(chunks));
+  detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
+    auto& out = chunk_centres[static_cast<std::size_t>(chunk)];
+    std::int32_t hint = -1;
+    for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
+      const auto& atom = atoms[index];
+      const double outer = reach[index], inner = outer - h;
+      // In crevices narrower than a grid step no sample is outside the SAS, yet a probe fits: every
+      // sample just inside an enlarged sphere (within one step) projects radially onto it, and the
+      // projection is a probe centre when no other enlarged sphere covers it.
+      const auto first = [&](int d) { return std::max<std::int64_t>(0, ceil_int((atom.position[d] - outer - field.origin[d]) / h)); };
+      const auto last = [&](int d) { return std::min<std::int64_t>(field.size[d] - 1, floor_int((atom.position[d] + outer - field.origin[d]) / h)); };
+      for (std::int64_t k = first(2); k <= last(2); ++k)
+        for (std::int64_t j = first(1); j <= last(1); ++j) {
+          const Vec3 row = field.point(0, j, k);
+          const double dy = row[1] - atom.position[1], dz = row[2] - atom.position[2], across = dy * dy + dz * dz;
+          const double rest = outer * outer - across;
+          if (rest < -1e-9 * outer * outer) continue;
+          const double half = std::sqrt(std::max(0.0, rest));
+          const std::int64_t i0 = std::max(first(0), ceil_int((atom.position[0] - half - field.origin[0]) / h) - 1);
+          const std::int64_t i1 = std::min(last(0), floor_int((atom.position[0] + half - field.origin[0]) / h) + 1);
+          // Samples deeper than `inner` (with a one-sample margin) are skipped without a test.
+          std::int64_t skip0 = i1 + 1, skip1 = i1;
+          if (inner > 0 && inner * inner - across > 0) {
+            const double core = std::sqrt(inner * inner - across);
+            skip0 = ceil_int((atom.position[0] - core - field.origin[0]) / h) + 1;
+            skip1 = floor_int((atom.position[0] + core - field.origin[0]) / h) - 1;
+          }
+          for (std::int64_t i = i0; i <= i1; ++i) {
+            if (i >= skip0 && i <= skip1) {
+              i = skip1;
+              continue;
+            }
+            const Vec3 x = field.point(i, j, k);
+            const double distance = norm(x - atom.position);
+            if (distance >= outer || distance < inner || distance == 0) continue;
+            const Vec3 centre = atom.position + (outer / distance) * (x - atom.position);
+            if (covered(centre, index, -1, hint)) continue;
+            const Vec3 unit = to_grid(centre);
+            if (connected(unit)) out.push_back(unit);
+          }
+        }
+      // Probe centres touching two atoms lie on the circle where their enlarged spheres meet: these shape
+      // the re-entrant (concave) parts of the surface, so the circles are sampled every half grid step.
+      const double reach_i = outer;
+      for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) {
+        const std::int32_t j = neighbours[static_cast<std::size_t>(m)];
+        if (j <= index) continue;
+        const double reach_j = reach[j];
+        const Vec3 axis = atoms[j].position - atom.position;
+        const double d = norm(axis);
+        if (d >= reach_i + reach_j || d <= std::abs(reach_i - reach_j) || d == 0) continue;
+        const double along = (d * d + reach_i * reach_i - reach_j * reach_j) / (2 * d);
+        const double circle_radius = std::sqrt(std::max(0.0, reach_i * reach_i - along * along));
+        const Vec3 unit_axis = (1 / d) * axis;
+        const Vec3 centre = atom.position + along * unit_axis;
+        // Most circles of a protein are buried: skip the circle when one enlarged sphere holds all of it
+        // (its farthest point from that sphere's centre is inside).
+        bool buried = false;
+        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1] && !buried; ++n) {
+          const std::int32_t other = neighbours[static_cast<std::size_t>(n)];
+          if (other == j) continue;
+          const Vec3 offset = atoms[other].position - centre;
+          const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
+          const double far = circle_radius + std::sqrt(b2);
+          buried = a * a + far * far < reach2[other] * (1 - 1e-12);
+        }
+        if (buried) continue;
+        const Vec3 helper = std::abs(unit_axis[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+        const Vec3 u = normalized(cross(unit_axis, helper));
+        const Vec3 v = cross(unit_axis, u);
+        const auto steps = std::max<std::int64_t>(8, ceil_int(2 * std::numbers::pi * circle_radius / (0.5 * h)));
+        for (std::int64_t step = 0; step < steps; ++step) {
+          const double angle = 2 * std::numbers::pi * static_cast<double>(step) / static_cast<double>(steps);
+          const Vec3 point = centre + circle_radius * (std::cos(angle) * u + std::sin(angle) * v);
+          if (covered(point, index, j, hint)) continue;
+          const Vec3 unit = to_grid(point);
+          if (connected(unit)) out.push_back(unit);
+        }
+      }
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& part : chunk_centres) total += part.size();
+  std::vector<Vec3> centres;
+  centres.reserve(total);
+  for (auto& part : chunk_centres) centres.insert(centres.end(), part.begin(), part.end()), std::vector<Vec3>().swap(part);
+  // In blocks of 8³ samples, block by block along a Morton curve, so that consecutive centres touch the same
+  // part of the grid (the order does not change the field: lowering is a min).
+  auto block_key = [](const Vec3& c) {
+    std::uint64_t key = 0;
+    for (int d = 0; d < 3; ++d) {
+      const auto b = static_cast<std::uint64_t>(std::max(0.0, c[d]) / 8);
+      for (int bit = 0; bit < 20; ++bit) key |= ((b >> bit) & 1u) << (3 * bit + d);
+    }
+    return key;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(centres.size());
+  for (std::size_t c = 0; c < centres.size(); ++c) order[c] = {block_key(centres[c]), static_cast<std::uint32_t>(c)};
+  std::sort(order.begin(), order.end());
+  std::vector<Vec3> sorted(centres.size());
+  for (std::size_t c = 0; c < centres.size(); ++c) sorted[c] = centres[order[c].second];
+  return sorted;
+}
+
+// Lowers every sample within `radius` (grid units) of a centre (and some a little farther: any sample
+// may take its exact distance to a valid centre) to its squared distance in grid units². Rows of a ball
+// of radius `radius` + sqrt(3)/2 around the nearest sample hold every sample within `radius` of the
+// centre; they come from one table, so the inner loop has no square root or rounding. Plane k belongs
+// to chunk k % threads; min is exact and order-free, so the result is deterministic.
+template <typename T>
+void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, int threads) {
+  const auto [nx, ny, nz] = field.size;
+  const double reach = radius + std::sqrt(3.0) / 2 + 1e-9;
+  const auto extent = static_cast<std::int64_t>(std::ceil(reach));
+  struct Row {
+    std::int32_t dj, half;
+  };
+  // rows[dk + extent]: the rows of plane dk, each spanning di in [-half, half].
+  std::vector<std::vector<Row>> rows(static_cast<std::size_t>(2 * extent + 1));
+  for (std::int64_t dk = -extent; dk <= extent; ++dk)
+    for (std::int64_t dj = -extent; dj <= extent; ++dj) {
+      const double rest = reach * reach - static_cast<double>(dk * dk + dj * dj);
+      if (rest < 0) continue;
+      rows[static_cast<std::size_t>(dk + extent)].push_back({static_cast<std::int32_t>(dj), static_cast<std::int32_t>(std::floor(std::sqrt(rest)))});
+    }
+  const std::int64_t plane = nx * ny;
+  detail::parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
+    for (const auto& c : centres) {
+      const std::int64_t ci = std::llround(c[0]), cj = std::llround(c[1]), ck = std::llround(c[2]);
+      const double fx = c[0] - static_cast<double>(ci), fy = c[1] - static_cast<double>(cj), fz = c[2] - static_cast<double>(ck);
+      const bool clip = ci - extent < 0 || cj - extent < 0 || ck - extent < 0 || ci + extent >= nx || cj + extent >= ny || ck + extent >= nz;
+      std::int64_t dk = -extent;
+      dk += (((chunk - (ck + dk)) % threads) + threads) % threads;
+      for (; dk <= extent; dk += threads) {
+        const std::int64_t k = ck + dk;
+        if (clip && (k < 0 || k >= nz)) continue;
+        const double z = static_cast<double>(dk) - fz, z2 = z * z;
+        for (const Row& row : rows[static_cast<std::size_t>(dk + extent)]) {
+          const std::int64_t j = cj + row.dj;
+          std::int64_t i0 = ci - row.half, i1 = ci + row.half;
+          if (clip) {
+            if (j < 0 || j >= ny) continue;
+            i0 = std::max<std::int64_t>(i0, 0), i1 = std::min<std::int64_t>(i1, nx - 1);
+            if (i0 > i1) continue;
+          }
+          const double y = static_cast<double>(row.dj) - fy;
+          // In T, from an int32 offset: SSE2 vectorizes this loop (no int64 -> floating conversion).
+          const T across = static_cast<T>(z2 + y * y), start = static_cast<T>(static_cast<double>(i0 - ci) - fx);
+          T* values = field.values.data() + k * plane + j * nx + i0;
+          const auto length = static_cast<std::int32_t>(i1 - i0 + 1);
+          for (std::int32_t m = 0; m < length; ++m) {
+            const T dx = static_cast<T>(m) + start;
+            const T value = across + dx * dx;
+            values[m] = value < values[m] ? value : values[m];
+          }
+        }
+      }
+    }
+  });
+}
+
+template <typename T>
+Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
   if (atoms.empty()) throw InputError("no atoms to build a surface from");
   const double h = options.grid, probe = options.probe;
   double largest_radius = 0;
@@ -63,171 +453,109 @@ Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const Surfa
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], a.position[d]), hi[d] = std::max(hi[d], a.position[d]);
   }
   const double margin = largest_radius + probe + 3 * h;
-  Grid3<double> field;
+  Grid3<T> field;
   field.spacing = h;
   for (int d = 0; d < 3; ++d) {
     field.origin[d] = lo[d] - margin;
-    field.size[d] = static_cast<std::int64_t>(std::ceil((hi[d] - lo[d] + 2 * margin) / h)) + 1;
+    field.size[d] = ceil_int((hi[d] - lo[d] + 2 * margin) / h) + 1;
   }
+  // The field is the only per-sample array (built in place); the surface probe centres (24 bytes each,
+  // about 100 per atom at 0.25 Å) and the atom lists are small beside it.
   const double samples = static_cast<double>(field.size[0]) * static_cast<double>(field.size[1]) * static_cast<double>(field.size[2]);
-  const double bytes = samples * (sizeof(double) + 1);
+  const double bytes = samples * static_cast<double>(sizeof(T));
   if (bytes > options.max_grid_bytes) {
     const double fitting = h * std::cbrt(bytes / options.max_grid_bytes) * 1.01;
-    throw InputError(fmt::format("a {} x {} x {} grid at {} Å would need {:.1f} GB (budget {:.1f} GB); use --grid {:.2f} or coarser",
-                                 field.size[0], field.size[1], field.size[2], h, bytes / 1e9, options.max_grid_bytes / 1e9,
+    throw InputError(fmt::format("a {} x {} x {} grid at {} Å would need {:.1f} GB ({} bytes per sample; budget {:.1f} GB); use --grid {:.2f} or coarser",
+                                 field.size[0], field.size[1], field.size[2], h, bytes / 1e9, sizeof(T), options.max_grid_bytes / 1e9,
                                  std::ceil(fitting * 100) / 100));
   }
-  const auto [nx, ny, nz] = field.size;
-
-  // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres.
-  Grid3<std::uint8_t> outside;
-  outside.size = field.size;
-  outside.origin = field.origin;
-  outside.spacing = h;
-  outside.values.assign(static_cast<std::size_t>(outside.count()), 1);
-  for (const auto& a : atoms) {
-    const double reach = a.radius + probe;
-    const auto first = [&](int d) { return std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((a.position[d] - reach - field.origin[d]) / h))); };
-    const auto last = [&](int d) { return std::min<std::int64_t>(field.size[d] - 1, static_cast<std::int64_t>(std::floor((a.position[d] + reach - field.origin[d]) / h))); };
-    for (std::int64_t k = first(2); k <= last(2); ++k)
-      for (std::int64_t j = first(1); j <= last(1); ++j)
-        for (std::int64_t i = first(0); i <= last(0); ++i)
-          if (squared_distance(field.point(i, j, k), a.position) < reach * reach) outside.values[outside.index(i, j, k)] = 0;
-  }
-  // Only probe positions connected to the outside count (as for MSMS's outer surface): flood the outside
-  // samples from the grid border; enclosed pockets are left unmarked and end up filled.
-  {
-    std::vector<std::int64_t> queue;
-    for (std::int64_t s = 0; s < outside.count(); ++s) {
-      const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
-      if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && outside.values[s] == 1) {
-        outside.values[s] = 2;
-        queue.push_back(s);
-      }
-    }
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const auto s = queue[head];
-      const std::int64_t i = s % nx, j = (s / nx) % ny, k = s / (nx * ny);
-      const std::int64_t neighbours[6] = {i > 0 ? s - 1 : -1, i + 1 < nx ? s + 1 : -1, j > 0 ? s - nx : -1,
-                                          j + 1 < ny ? s + nx : -1, k > 0 ? s - nx * ny : -1, k + 1 < nz ? s + nx * ny : -1};
-      for (auto t : neighbours)
-        if (t >= 0 && outside.values[t] == 1) outside.values[t] = 2, queue.push_back(t);
-    }
-    for (auto& v : outside.values) v = v == 2 ? 1 : 0;
-  }
-  Grid3<double> squared = squared_distance_transform(outside);
-  for (auto& d : squared.values) d *= h * h;
-
-  // More probe centres, on the SAS surface itself: in crevices narrower than a grid step no sample is
-  // outside the SAS, yet a probe fits. Every sample just inside an enlarged sphere projects radially onto
-  // it; the projection is a probe centre when no other enlarged sphere covers it. Each centre lowers the
-  // distance of the inside samples within probe + 2 steps of it.
-  const AtomCells cells(atoms, largest_radius + probe);
-  const auto window = static_cast<std::int64_t>(std::ceil((probe + 2 * h) / h));
-  auto add_probe_centre = [&](const Vec3& centre) {
-    const auto ci = static_cast<std::int64_t>(std::llround((centre[0] - field.origin[0]) / h));
-    const auto cj = static_cast<std::int64_t>(std::llround((centre[1] - field.origin[1]) / h));
-    const auto ck = static_cast<std::int64_t>(std::llround((centre[2] - field.origin[2]) / h));
-    // A centre on the SAS surface counts when a connected outside sample is next to it.
-    bool connected = false;
-    for (std::int64_t c = std::max<std::int64_t>(0, ck - 1); c <= std::min(nz - 1, ck + 1) && !connected; ++c)
-      for (std::int64_t b = std::max<std::int64_t>(0, cj - 1); b <= std::min(ny - 1, cj + 1) && !connected; ++b)
-        for (std::int64_t a = std::max<std::int64_t>(0, ci - 1); a <= std::min(nx - 1, ci + 1) && !connected; ++a)
-          connected = outside.values[outside.index(a, b, c)] != 0;
-    if (!connected) return;
-    for (std::int64_t c = std::max<std::int64_t>(0, ck - window); c <= std::min(nz - 1, ck + window); ++c)
-      for (std::int64_t b = std::max<std::int64_t>(0, cj - window); b <= std::min(ny - 1, cj + window); ++b)
-        for (std::int64_t a = std::max<std::int64_t>(0, ci - window); a <= std::min(nx - 1, ci + window); ++a) {
-          const auto t = squared.index(a, b, c);
-          if (outside.values[t]) continue;
-          const double d = squared_distance(field.point(a, b, c), centre);
-          if (d < squared.values[t]) squared.values[t] = d;
-        }
-  };
-  for (std::int32_t index = 0; index < static_cast<std::int32_t>(atoms.size()); ++index) {
-    const auto& atom = atoms[index];
-    const double reach = atom.radius + probe;
-    const auto first = [&](int d) { return std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil((atom.position[d] - reach - field.origin[d]) / h))); };
-    const auto last = [&](int d) { return std::min<std::int64_t>(field.size[d] - 1, static_cast<std::int64_t>(std::floor((atom.position[d] + reach - field.origin[d]) / h))); };
-    for (std::int64_t k = first(2); k <= last(2); ++k)
-      for (std::int64_t j = first(1); j <= last(1); ++j)
-        for (std::int64_t i = first(0); i <= last(0); ++i) {
-          const Vec3 x = field.point(i, j, k);
-          const double distance = norm(x - atom.position);
-          if (distance >= reach || distance < reach - h || distance == 0) continue;
-          const Vec3 centre = atom.position + (reach / distance) * (x - atom.position);
-          bool covered = false;
-          cells.near(centre, largest_radius + probe, [&](std::int32_t other) {
-            if (covered || other == index) return;
-            const double other_reach = atoms[other].radius + probe;
-            covered = squared_distance(centre, atoms[other].position) < other_reach * other_reach;
-          });
-          if (!covered) add_probe_centre(centre);
-        }
-  }
-  // Probe centres touching two atoms lie on the circle where their enlarged spheres meet: these shape the
-  // re-entrant (concave) parts of the surface, so the circles are sampled every half grid step.
-  for (std::int32_t i = 0; i < static_cast<std::int32_t>(atoms.size()); ++i) {
-    const double reach_i = atoms[i].radius + probe;
-    cells.near(atoms[i].position, 2 * (largest_radius + probe), [&](std::int32_t j) {
-      if (j <= i) return;
-      const double reach_j = atoms[j].radius + probe;
-      const Vec3 axis = atoms[j].position - atoms[i].position;
-      const double d = norm(axis);
-      if (d >= reach_i + reach_j || d <= std::abs(reach_i - reach_j) || d == 0) return;
-      const double along = (d * d + reach_i * reach_i - reach_j * reach_j) / (2 * d);
-      const double circle_radius = std::sqrt(std::max(0.0, reach_i * reach_i - along * along));
-      const Vec3 unit = (1 / d) * axis;
-      const Vec3 centre = atoms[i].position + along * unit;
-      const Vec3 helper = std::abs(unit[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-      const Vec3 u = normalized(cross(unit, helper));
-      const Vec3 v = cross(unit, u);
-      const auto steps = std::max<std::int64_t>(8, static_cast<std::int64_t>(std::ceil(2 * std::numbers::pi * circle_radius / (0.5 * h))));
-      for (std::int64_t step = 0; step < steps; ++step) {
-        const double angle = 2 * std::numbers::pi * static_cast<double>(step) / static_cast<double>(steps);
-        const Vec3 point = centre + circle_radius * (std::cos(angle) * u + std::sin(angle) * v);
-        bool covered = false;
-        cells.near(point, largest_radius + probe, [&](std::int32_t other) {
-          if (covered || other == i || other == j) return;
-          const double other_reach = atoms[other].radius + probe;
-          covered = squared_distance(point, atoms[other].position) < other_reach * other_reach;
-        });
-        if (!covered) add_probe_centre(point);
-      }
-    });
-  }
-  field.values.resize(squared.values.size());
-  for (std::size_t s = 0; s < field.values.size(); ++s) field.values[s] = std::sqrt(squared.values[s]) - probe;
+  const int threads = detail::surface_threads(options.threads);
+  field.values.assign(static_cast<std::size_t>(field.count()), static_cast<T>(kUnreached));
+  // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those
+  // connected to the outside count (as for MSMS's outer surface), unless cavities are carved too.
+  mark_accessible_surface(field, atoms, probe, threads);
+  flood_from_border(field, options.carve_cavities, threads);
+  // More probe centres, on the SAS surface itself, next to carving samples (found before the transform,
+  // while carving samples are exactly the zeros).
+  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, threads);
+  squared_distance_transform_in_place(field, threads);
+  // Each surface centre lowers the samples within probe + sqrt(3) steps of it. That makes g exact (for
+  // this set of centres) wherever |g| < sqrt(3) steps, which covers both ends of every lattice edge the
+  // surface crosses (g changes by at most the edge length along it), so the contour is the same as with
+  // an unbounded reach; deeper inside, the grid samples alone give g.
+  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), threads);
+  const std::int64_t plane = field.size[0] * field.size[1];
+  detail::parallel_chunks(field.size[2], threads, [&](std::int64_t k, int) {
+    T* values = field.values.data() + k * plane;
+    for (std::int64_t s = 0; s < plane; ++s) values[s] = static_cast<T>(std::sqrt(static_cast<double>(values[s])) * h - probe);
+  });
   return field;
 }
 
+template <typename T>
+Mesh contour_with_atoms(const Grid3<T>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+  Mesh mesh = contour_isosurface(field, 0.0, options.threads);
+  add_nearest_atoms(mesh, atoms, options);
+  return mesh;
+}
+
+}  // namespace
+
+Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+  return excluded_field<double>(atoms, options);
+}
+
+Grid3<float> solvent_excluded_field_float(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+  return excluded_field<float>(atoms, options);
+}
+
 Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  return surface_from_field(solvent_excluded_field(atoms, options), atoms, options);
+  Mesh mesh;
+  {
+    const Grid3<float> field = solvent_excluded_field_float(atoms, options);
+    mesh = contour_isosurface(field, 0.0, options.threads);
+  }
+  add_nearest_atoms(mesh, atoms, options);
+  return mesh;
 }
 
 Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  Mesh mesh = contour_isosurface(field, 0.0);
-  double largest_radius = 0;
-  for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
-  const AtomCells cells(atoms, largest_radius + options.probe);
-  auto& atom_index = mesh.integer_attributes["atomid"];
-  auto& serial = mesh.integer_attributes["vertex_atom_serial"];
-  auto& residue = mesh.integer_attributes["vertex_residue_number"];
-  auto& model = mesh.integer_attributes["vertex_model"];
-  for (const auto& p : mesh.positions) {
-    // A surface point is within probe + grid of its nearest atom's sphere.
-    double best = std::numeric_limits<double>::infinity();
-    std::int32_t chosen = 0;
-    cells.near(p, largest_radius + options.probe + 2 * options.grid, [&](std::int32_t index) {
-      const double gap = norm(p - atoms[index].position) - atoms[index].radius;
-      if (gap < best || (gap == best && index < chosen)) best = gap, chosen = index;
-    });
-    atom_index.push_back(chosen);
-    serial.push_back(atoms[chosen].serial);
-    residue.push_back(atoms[chosen].residue_number);
-    model.push_back(atoms[chosen].model);
+  return contour_with_atoms(field, atoms, options);
+}
+
+Mesh surface_from_field(const Grid3<float>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+  return contour_with_atoms(field, atoms, options);
+}
+
+void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
+  const std::size_t n = mesh.vertex_count();
+  std::vector<std::int32_t> atom_index(n), serial(n), residue(n), model(n);
+  if (n > 0) {
+    if (atoms.empty()) throw InputError("no atoms to take surface provenance from");
+    double largest_radius = 0;
+    for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
+    const AtomGrid grid(atoms, 2.0);
+    constexpr std::size_t kChunk = 4096;
+    detail::parallel_chunks(static_cast<std::int64_t>((n + kChunk - 1) / kChunk), detail::surface_threads(options.threads),
+                            [&](std::int64_t chunk, int) {
+                              const std::size_t first = static_cast<std::size_t>(chunk) * kChunk;
+                              std::int32_t chosen = grid.some_atom_near(mesh.positions[first]);
+                              for (std::size_t v = first; v < std::min(n, first + kChunk); ++v) {
+                                // Consecutive vertices are neighbours on the grid: the last answer is a close bound.
+                                const Vec3& p = mesh.positions[v];
+                                if (norm(p - atoms[chosen].position) - atoms[chosen].radius > 2 * largest_radius) chosen = grid.some_atom_near(p);
+                                chosen = grid.nearest_sphere(p, largest_radius, chosen);
+                                atom_index[v] = chosen;
+                                serial[v] = atoms[chosen].serial;
+                                residue[v] = atoms[chosen].residue_number;
+                                model[v] = atoms[chosen].model;
+                              }
+                            });
   }
-  return mesh;
+  mesh.integer_attributes["atomid"] = std::move(atom_index);
+  mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
+  mesh.integer_attributes["vertex_residue_number"] = std::move(residue);
+  mesh.integer_attributes["vertex_model"] = std::move(model);
 }
 
 }  // namespace spheremap

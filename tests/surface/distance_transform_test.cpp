@@ -31,6 +31,37 @@ TEST(DistanceTransform, MatchesBruteForceOnRandomTargets) {
   }
 }
 
+TEST(DistanceTransform, InPlaceWithAnyStartValuesInDoubleAndFloatAndAnyThreads) {
+  std::mt19937 random(5);
+  Grid3<double> start;
+  start.size = {23, 9, 14};  // wider than one block of lines along x
+  start.values.resize(static_cast<std::size_t>(start.count()));
+  for (auto& v : start.values) v = random() % 4 == 0 ? static_cast<double>(random() % 50) : std::numeric_limits<double>::infinity();
+  auto brute = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::int64_t c = 0; c < start.size[2]; ++c)
+      for (std::int64_t b = 0; b < start.size[1]; ++b)
+        for (std::int64_t a = 0; a < start.size[0]; ++a)
+          best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
+    return best;
+  };
+  for (int threads : {1, 2, 3}) {
+    Grid3<double> d = start;
+    squared_distance_transform_in_place(d, threads);
+    Grid3<float> f;
+    f.size = start.size;
+    f.values.assign(start.values.begin(), start.values.end());
+    squared_distance_transform_in_place(f, threads);
+    for (std::int64_t k = 0; k < start.size[2]; ++k)
+      for (std::int64_t j = 0; j < start.size[1]; ++j)
+        for (std::int64_t i = 0; i < start.size[0]; ++i) {
+          const double expected = brute(i, j, k);
+          ASSERT_EQ(d.values[d.index(i, j, k)], expected) << threads;
+          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected) << threads;  // integers below 2^24: exact
+        }
+  }
+}
+
 TEST(DistanceTransform, NoTargetGivesInfinity) {
   Grid3<std::uint8_t> empty;
   empty.size = {3, 3, 3};

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <algorithm>
 
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -94,6 +95,103 @@ TEST(Ses, RefusesAGridBeyondTheMemoryBudgetAndSaysWhichSpacingFits) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("use --grid"), std::string::npos) << e.what();
   }
+}
+
+// Connected components by shared vertices: (area, signed volume) of each, largest area first.
+std::vector<std::pair<double, double>> components_of(const Mesh& mesh) {
+  std::vector<std::int32_t> parent(mesh.vertex_count());
+  for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<std::int32_t>(v);
+  auto find = [&](std::int32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
+  std::map<std::int32_t, std::pair<double, double>> parts;
+  for (const auto& t : mesh.triangles) {
+    const auto &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    auto& part = parts[find(t[0])];
+    part.first += triangle_area(a, b, c);
+    part.second += dot(a, cross(b, c)) / 6;
+  }
+  std::vector<std::pair<double, double>> out;
+  for (const auto& [root, part] : parts) out.push_back(part);
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  return out;
+}
+
+// Carbon atoms on a sphere of radius 10 Å, about 1.6 Å apart (Fibonacci lattice): no probe passes the
+// shell, and the inside is a void of radius about 10 - 3.1 Å where a probe fits.
+std::vector<Atom> hollow_shell() {
+  std::vector<Atom> atoms;
+  const int n = 480;
+  const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
+  for (int k = 0; k < n; ++k) {
+    const double z = 1 - 2 * (k + 0.5) / n, r = std::sqrt(1 - z * z);
+    atoms.push_back(atom_at({10 * r * std::cos(golden * k), 10 * r * std::sin(golden * k), 10 * z}, 1.7, k + 1));
+  }
+  return atoms;
+}
+
+TEST(Ses, CavitiesAreFilledByDefaultAndCarvedOnRequest) {
+  const auto atoms = hollow_shell();
+  SurfaceOptions options;
+  const Mesh filled = solvent_excluded_surface(atoms, options);
+  expect_closed_oriented_manifold(filled);
+  EXPECT_EQ(components_of(filled).size(), 1u);
+  options.carve_cavities = true;
+  const Mesh carved = solvent_excluded_surface(atoms, options);
+  expect_closed_oriented_manifold(carved);
+  const auto parts = components_of(carved);
+  ASSERT_EQ(parts.size(), 2u);
+  // The outer surface is the same; the cavity faces into the void (negative signed volume), with about
+  // the area of a sphere through the inner sides of the atoms (radius 10 - 1.7 Å), a little more for the
+  // bumps between them.
+  EXPECT_NEAR(parts[0].first / components_of(filled)[0].first, 1.0, 1e-9);
+  EXPECT_GT(parts[0].second, 0);
+  EXPECT_LT(parts[1].second, 0);
+  const double inner_sphere = 4 * std::numbers::pi * 8.3 * 8.3;
+  EXPECT_GT(parts[1].first, 0.9 * inner_sphere);
+  EXPECT_LT(parts[1].first, 1.3 * inner_sphere);
+  // The carved volume is the void: at least the ball of radius 10 - 3.1 Å swept by the probe.
+  EXPECT_GT(-parts[1].second, 4.0 / 3 * std::numbers::pi * std::pow(10 - 3.1 + 1.4, 3) * 0.9);
+}
+
+TEST(Ses, ResultsDoNotDependOnTheNumberOfThreads) {
+  std::vector<Atom> atoms = hollow_shell();
+  atoms.resize(300);  // an open bowl: pockets, re-entrant parts and circles of every kind
+  SurfaceOptions options;
+  options.grid = 0.4;
+  options.threads = 1;
+  const auto field = solvent_excluded_field(atoms, options);
+  const auto field_float = solvent_excluded_field_float(atoms, options);
+  const Mesh mesh = solvent_excluded_surface(atoms, options);
+  for (int threads : {2, 3, 8}) {
+    options.threads = threads;
+    EXPECT_EQ(solvent_excluded_field(atoms, options).values, field.values) << threads;
+    EXPECT_EQ(solvent_excluded_field_float(atoms, options).values, field_float.values) << threads;
+    const Mesh again = solvent_excluded_surface(atoms, options);
+    EXPECT_EQ(again.positions, mesh.positions) << threads;
+    EXPECT_EQ(again.triangles, mesh.triangles) << threads;
+    EXPECT_EQ(again.integer_attributes, mesh.integer_attributes) << threads;
+  }
+  // Single and double precision fields give the same surface up to rounding.
+  const Mesh from_double = surface_from_field(field, atoms, options);
+  expect_closed_oriented_manifold(mesh);
+  ASSERT_EQ(from_double.triangles, mesh.triangles);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) ASSERT_LT(norm(from_double.positions[v] - mesh.positions[v]), 1e-4 * options.grid);
+}
+
+TEST(Ses, TheBudgetCountsOneValuePerSample) {
+  SurfaceOptions options;
+  options.grid = 0.5;
+  const std::vector<Atom> two = {atom_at({0, 0, 0}, 1.7, 1), atom_at({30, 0, 0}, 1.7, 2)};
+  const auto field = solvent_excluded_field(two, options);
+  const double needed = static_cast<double>(field.count()) * sizeof(double);
+  options.max_grid_bytes = needed;
+  EXPECT_NO_THROW(solvent_excluded_field(two, options));
+  options.max_grid_bytes = needed / 2 + 1;  // enough for floats only
+  EXPECT_THROW(solvent_excluded_field(two, options), InputError);
+  EXPECT_NO_THROW(solvent_excluded_field_float(two, options));
 }
 
 }  // namespace

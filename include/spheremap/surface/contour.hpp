@@ -12,9 +12,13 @@ namespace spheremap {
 /// classified strictly (inside: value > level), the result is a closed, consistently oriented 2-manifold
 /// whenever every sample on the grid's outer layer is outside. Triangles face outward (towards
 /// decreasing values). Vertices sit on grid edges; interpolation parameters are kept in [0.1, 0.9]
-/// (a vertex moves by at most a tenth of a step) so that no sliver triangles appear. Vertices are shared,
-/// in a deterministic order.
+/// (a vertex moves by at most a tenth of a step) so that no sliver triangles appear.
+/// Vertices are numbered by their grid edge (lower sample index, then edge direction: +x, +y, +z,
+/// +x+y, +x+z, +y+z, +x+y+z); triangles come cell by cell in grid order. The output is the same for
+/// any `threads` (0: one per hardware thread). Memory: the mesh, allocated once at its exact size, plus
+/// a few planes of the grid per thread.
 /// Throws std::invalid_argument if a sample of the outer layer is inside or the grid is smaller than 2³.
-Mesh contour_isosurface(const Grid3<double>& field, double level);
+Mesh contour_isosurface(const Grid3<double>& field, double level, int threads = 0);
+Mesh contour_isosurface(const Grid3<float>& field, double level, int threads = 0);
 
 }  // namespace spheremap
