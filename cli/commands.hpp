@@ -29,7 +29,7 @@ Command add_table_command(CLI::App& app);
 /// apply() after: apply() fills `options` (chains, hetero, radius table, --preset).
 struct StructureCliOptions {
   std::string chains, radii_file, preset;
-  bool no_hetero = false;
+  bool no_hetero = false, cavities = false;
   CLI::App* command = nullptr;
   void add(CLI::App* command, MapJobOptions& options);
   void apply(MapJobOptions& options) const;

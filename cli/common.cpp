@@ -24,6 +24,9 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options) {
                               "--probe and --grid given explicitly still win",
                               kPaperProbe, kPaperGrid))
       ->check(CLI::IsMember({"paper"}));
+  cmd->add_flag("--cavities", cavities,
+                "Carve internal cavities that hold a probe, as separate reported components (default: filled, as MSMS's "
+                "outer surface; with it, pockets within a probe diameter of the outside open into the outer surface)");
   cmd->add_flag("--keep-topology", options.keep_topology,
                 "Do not repair handles of the molecular surface (map: refuse a surface of genus > 0, the paper's filter)");
 }
@@ -35,6 +38,7 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
       if (!chain.empty()) options.structure.chains.push_back(chain);
   }
   options.structure.keep_hetero = !no_hetero;
+  if (cavities) options.surface.carve_cavities = true;
   if (!radii_file.empty()) options.structure.radii = load_radius_table(radii_file);
   if (preset == "paper") {
     if (command->count("--probe") == 0) options.surface.probe = kPaperProbe;

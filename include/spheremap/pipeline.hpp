@@ -23,6 +23,9 @@ struct MapJobOptions {
   bool ascii = false;  // ASCII PLY outputs (full precision) instead of binary
   /// For structure files (.pdb .ent .cif .mmcif .pqr, optionally .gz): which atoms, and the surface.
   StructureOptions structure;
+  /// carve_cavities is off by default (MSMS's outer surface): with it, each enclosed cavity that holds a
+  /// probe becomes its own reported component, but a pocket within a probe diameter of the outside
+  /// opens into the outer surface and changes it.
   SurfaceOptions surface;
   /// Structure files: skip the handle repair and refuse a surface of genus > 0 (the paper's filter).
   bool keep_topology = false;

@@ -406,6 +406,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
        result.from_structure
            ? nlohmann::json{{"atoms", result.atoms},
                             {"probe", options.surface.probe},
+                            {"carve_cavities", options.surface.carve_cavities},
                             {"grid", options.surface.grid},
                             {"models_in_file", result.structure.models_in_file},
                             {"atoms_in_model", result.structure.atoms_in_model},

@@ -259,6 +259,17 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   ASSERT_EQ(surface.exit_code, 0) << surface.output;
   EXPECT_NE(slurp(folder_ / "crn.ply").substr(0, 400).find("property int atomid"), std::string::npos);
 
+  // --cavities: crambin's buried cavity (at 0.5 Å, probe 1.4 Å) becomes a reported component; the outer
+  // surface, which is mapped, is the same as without it.
+  const auto cavities = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn-cav").string() + " --cavities");
+  ASSERT_EQ(cavities.exit_code, 0) << cavities.output;
+  const auto with = nlohmann::json::parse(slurp(folder_ / "crn-cav" / "report.json"));
+  const auto without = nlohmann::json::parse(slurp(folder_ / "crambin" / "report.json"));
+  ASSERT_EQ(with["structure"]["components"].size(), 2u);
+  EXPECT_EQ(with["structure"]["components"][1]["kind"], "cavity");
+  EXPECT_GT(with["structure"]["components"][1]["residue_count"], 0);
+  EXPECT_EQ(with["mesh"]["triangles"], without["mesh"]["triangles"]);
+
   // A surface with handles (4hhb has 8 at a 1 Å grid) is repaired and maps certified; with
   // --keep-topology (the paper's filter) it is refused with its genus and nothing is written.
   const std::string haemoglobin = (pdb / "misc" / "4hhb.cif").string() + " --grid 1.0";
