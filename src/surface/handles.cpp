@@ -307,11 +307,20 @@ GenusRepair repair_outer_genus(Grid3<double>& field, double level) {
   GenusRepair result;
   result.outer_genus_before = outer_genus(field, level);
   if (result.outer_genus_before == 0) return result;
-  result.per_handle = repair_handles(field, level);
-  if (outer_genus(field, level) == 0) {
-    result.method = "per-handle";
-    result.samples_changed = result.per_handle.samples_changed;
-    return result;
+  // The clusters of one round are judged against each other's original surroundings; a handle whose two
+  // membranes interact may survive a round, so the growths are redone on the changed field (a few rounds).
+  constexpr int kRounds = 4;
+  for (int round = 0; round < kRounds; ++round) {
+    HandleRepair more = repair_handles(field, level);
+    const bool changed = !more.changes.empty();
+    result.per_handle.samples_changed += more.samples_changed;
+    for (auto& change : more.changes) result.per_handle.changes.push_back(std::move(change));
+    if (outer_genus(field, level) == 0) {
+      result.method = "per-handle";
+      result.samples_changed = result.per_handle.samples_changed;
+      return result;
+    }
+    if (!changed) break;
   }
   undo_handle_repair(field, result.per_handle);
   result.per_handle = {};

@@ -69,6 +69,24 @@ TEST(Ses, TwoTouchingAtomsAreBridgedByTheProbeAndFarAtomsAreNot) {
   EXPECT_NEAR(area_of(apart) / two_spheres, 1.0, 0.02);
 }
 
+TEST(Ses, ThreeAtomsInARowHaveTwoIndependentNecks) {
+  SurfaceOptions options;
+  options.grid = 0.25;
+  // Centres 4 Å apart on a line: each neighbouring pair is bridged as in the test above, and the middle
+  // atom's two caps (half-angle α = 49.8° each) are far apart, so the closed form is 3 spheres - 4 caps
+  // + 2 toroidal necks.
+  const Mesh row = solvent_excluded_surface(
+      {atom_at({0, 0, 0}, 1.7, 1), atom_at({4, 0, 0}, 1.7, 2), atom_at({8, 0, 0}, 1.7, 3)}, options);
+  expect_closed_oriented_manifold(row);
+  const double r = 1.7, probe = 1.4, half = 2.0, reach = r + probe;
+  const double ring = std::sqrt(reach * reach - half * half);
+  const double cap = 2 * std::numbers::pi * r * r * (1 - half / reach);
+  const double arc_angle = std::acos((-half * half + ring * ring) / (reach * reach));
+  const double centroid = probe * std::sin(arc_angle / 2) / (arc_angle / 2);
+  const double torus = probe * arc_angle * 2 * std::numbers::pi * (ring - centroid);
+  EXPECT_NEAR(area_of(row) / (3 * 4 * std::numbers::pi * r * r - 4 * cap + 2 * torus), 1.0, 0.01);
+}
+
 TEST(Ses, EveryVertexCarriesItsNearestAtom) {
   std::vector<Atom> atoms;
   for (int k = 0; k < 12; ++k) atoms.push_back(atom_at({1.3 * k, 0.7 * (k % 3), 0.4 * (k % 2)}, 1.5 + 0.05 * k, 100 + k));

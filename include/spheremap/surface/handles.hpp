@@ -69,8 +69,9 @@ struct GenusRepair {
 };
 
 /// Makes the largest component of the contour {field = level} (the outer surface of a molecule) genus 0
-/// with the smallest change we can find: repair_handles, checked by contouring; if the largest
-/// component still has handles, the field is restored and cut_handles applied (always genus 0, one
+/// with the smallest change we can find: repair_handles, checked by contouring, repeated on the changed
+/// field while it still changes something (at most 4 rounds); if the largest component still has
+/// handles, the field is restored and cut_handles applied (always genus 0, one
 /// component). Other components (detached pieces, cavities) are left as they are by the per-handle
 /// repair. Same preconditions and throws as cut_handles.
 GenusRepair repair_outer_genus(Grid3<double>& field, double level);
