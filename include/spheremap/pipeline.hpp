@@ -69,6 +69,7 @@ struct MolecularSurface {
   Mesh mesh;  // every component, with atom provenance
   std::vector<MeshComponent> components;          // largest area first
   std::vector<SurfaceComponentReport> reports;    // same order
+  std::vector<StageTime> timings;                 // wall-clock seconds of its stages ("surface_field", ...)
 };
 
 /// True for the extensions read_structure reads.
@@ -94,6 +95,7 @@ struct MapJobResult {
   std::vector<SurfaceComponentReport> components;  // of the molecular surface; the mapped one flagged
   std::int64_t component_index = 0;                // which of them was mapped
   double surface_seconds = 0;
+  std::vector<StageTime> surface_timings;  // the parts of surface_seconds (MolecularSurface::timings)
   PreparedMesh prepared;
   SphereMap map;
   DistortionMetrics metrics;

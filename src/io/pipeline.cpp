@@ -112,7 +112,8 @@ std::vector<std::string> sorted_unique(std::vector<std::string> labels) {
 }
 
 // The residues of the atoms nearest (smallest |x - centre| - radius) to the given grid samples.
-std::vector<std::string> residues_near_samples(const Grid3<double>& field, const std::vector<std::int64_t>& samples,
+template <typename T>
+std::vector<std::string> residues_near_samples(const Grid3<T>& field, const std::vector<std::int64_t>& samples,
                                                const std::vector<Atom>& atoms, double reach) {
   Vec3 low{1e300, 1e300, 1e300}, high{-1e300, -1e300, -1e300};
   std::vector<Vec3> points;
@@ -142,7 +143,8 @@ std::vector<std::string> residues_near_samples(const Grid3<double>& field, const
   return sorted_unique(std::move(labels));
 }
 
-HandleChangeReport describe_change(const Grid3<double>& field, bool filled, const std::vector<std::int64_t>& samples,
+template <typename T>
+HandleChangeReport describe_change(const Grid3<T>& field, bool filled, const std::vector<std::int64_t>& samples,
                                    const std::vector<Atom>& atoms, double reach) {
   HandleChangeReport change;
   change.kind = filled ? "fill" : "cut";
@@ -169,9 +171,15 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
     report.area = component.area;
     report.volume = std::abs(component.signed_volume);
     report.genus = component.genus;
-    std::vector<std::string> labels;
+    std::vector<std::int32_t> component_atoms;
+    component_atoms.reserve(component.triangles.size());
     for (const auto t : component.triangles)
-      for (const auto v : mesh.triangles[t]) labels.push_back(residue_label(atoms[atom_of[v]]));
+      for (const auto v : mesh.triangles[t]) component_atoms.push_back(atom_of[v]);
+    std::sort(component_atoms.begin(), component_atoms.end());
+    component_atoms.erase(std::unique(component_atoms.begin(), component_atoms.end()), component_atoms.end());
+    std::vector<std::string> labels;
+    labels.reserve(component_atoms.size());
+    for (const auto a : component_atoms) labels.push_back(residue_label(atoms[a]));
     labels = sorted_unique(std::move(labels));
     report.residue_count = static_cast<std::int64_t>(labels.size());
     if (labels.size() > kListedResidues) labels.resize(kListedResidues);
@@ -185,32 +193,50 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
 
 MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
                                   TopologyRepair* repair) {
-  Grid3<double> field = solvent_excluded_field(atoms, surface);
+  MolecularSurface result;
   TopologyRepair local;
   TopologyRepair& report = repair ? *repair : local;
-  const auto before = mesh_components(contour_isosurface(field, 0.0));
-  report.genus_before = before.empty() ? 0 : before.front().genus;
-  report.area_before = before.empty() ? 0 : before.front().area;
-  double largest_radius = 0;
-  for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
-  const double reach = largest_radius + surface.probe + 2 * surface.grid;
-  if (!keep_topology && report.genus_before != 0) {
-    const GenusRepair fix = repair_outer_genus(field, 0.0);
-    report.method = fix.method;
-    report.samples_changed = fix.samples_changed;
-    report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
-    for (const auto& change : fix.per_handle.changes)
-      report.changes.push_back(describe_change(field, change.filled, change.samples, atoms, reach));
-    if (!fix.global.removed_samples.empty())
-      report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples, atoms, reach));
+  auto stage_start = std::chrono::steady_clock::now();
+  auto lap = [&](const char* stage) {
+    result.timings.push_back({stage, seconds_since(stage_start)});
+    stage_start = std::chrono::steady_clock::now();
+  };
+  Mesh mesh;
+  {
+    // The single-precision field is the only per-sample array (4 bytes per sample); it is freed as soon
+    // as the final contour exists.
+    Grid3<float> field = solvent_excluded_field_float(atoms, surface);
+    lap("surface_field");
+    mesh = contour_isosurface(field, 0.0, surface.threads);
+    const auto before = mesh_components(mesh);
+    report.genus_before = before.empty() ? 0 : before.front().genus;
+    report.area_before = before.empty() ? 0 : before.front().area;
+    lap("surface_contour");
+    if (!keep_topology && report.genus_before != 0) {
+      mesh = Mesh{};  // the repair needs the memory; its last genus check contours the repaired field
+      const GenusRepair fix = repair_outer_genus(field, 0.0, report.genus_before, surface.threads, mesh);
+      double largest_radius = 0;
+      for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
+      const double reach = largest_radius + surface.probe + 2 * surface.grid;
+      report.method = fix.method;
+      report.samples_changed = fix.samples_changed;
+      report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
+      for (const auto& change : fix.per_handle.changes)
+        report.changes.push_back(describe_change(field, change.filled, change.samples, atoms, reach));
+      if (!fix.global.removed_samples.empty())
+        report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples, atoms, reach));
+      lap("surface_repair");
+    }
   }
-  MolecularSurface result;
-  result.mesh = surface_from_field(field, atoms, surface);
-  add_atom_provenance(result.mesh, atoms);
+  add_nearest_atoms(mesh, atoms, surface);
+  add_atom_provenance(mesh, atoms);
+  lap("surface_provenance");
+  result.mesh = std::move(mesh);
   result.components = mesh_components(result.mesh);
   result.reports = describe_components(result.mesh, result.components, atoms);
   report.area_after = result.components.empty() ? 0 : result.components.front().area;
   if (report.method == "none") report.area_before = report.area_after;
+  lap("surface_components");
   return result;
 }
 
@@ -234,6 +260,7 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
     throw InputError(fmt::format("{}: {}", input.string(), e.what()));
   }
   result.surface_seconds = seconds_since(surface_start);
+  result.surface_timings = surface.timings;
   result.components = surface.reports;
   if (surface.components.empty())
     throw MeshRefused(fmt::format("{}: the molecular surface is empty", input.string()));
@@ -385,6 +412,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
   nlohmann::json timings = nlohmann::json::object();
   timings["read"] = result.read_seconds;
   if (result.from_structure) timings["surface"] = result.surface_seconds;
+  for (const auto& t : result.surface_timings) timings[t.stage] = t.seconds;
   timings["prepare"] = result.prepare_seconds;
   for (const auto& t : map.timings) timings[t.stage] = t.seconds;
   timings["metrics"] = result.metrics_seconds;

@@ -39,23 +39,15 @@ std::vector<MeshComponent> mesh_components(const Mesh& mesh) {
     c.area += triangle_area(a, b, p);
     c.signed_volume += dot(a, cross(b, p)) / 6.0;
   }
-  // Vertices and edges per component, for the Euler characteristic.
+  // Vertices per component, for the Euler characteristic; a closed 2-manifold has E = 3F/2.
   std::vector<std::int64_t> vertex_count(components.size(), 0);
   for (std::int32_t v = 0; v < n; ++v)
     if (component_of_root[find_root(parent, v)] >= 0) ++vertex_count[component_of_root[find_root(parent, v)]];
   for (std::size_t c = 0; c < components.size(); ++c) {
     auto& component = components[c];
-    std::vector<std::pair<std::int32_t, std::int32_t>> edges;
-    edges.reserve(component.triangles.size() * 3);
-    for (const auto t : component.triangles)
-      for (int k = 0; k < 3; ++k) {
-        auto a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-        edges.emplace_back(std::min(a, b), std::max(a, b));
-      }
-    std::sort(edges.begin(), edges.end());
-    const auto edge_count = std::unique(edges.begin(), edges.end()) - edges.begin();
     component.vertices = vertex_count[c];
-    const std::int64_t euler = component.vertices - edge_count + static_cast<std::int64_t>(component.triangles.size());
+    const auto faces = static_cast<std::int64_t>(component.triangles.size());
+    const std::int64_t euler = component.vertices - 3 * faces / 2 + faces;
     component.genus = static_cast<int>((2 - euler) / 2);
   }
   std::stable_sort(components.begin(), components.end(),

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "spheremap/mesh.hpp"
 #include "spheremap/surface/grid.hpp"
 
 namespace spheremap {
@@ -27,7 +28,11 @@ struct HandleCut {
 ///   samples never added (spanning tunnels, and cavities) go just above `level`.
 /// Preconditions: some sample > level, every border sample <= level. Throws std::invalid_argument
 /// otherwise. Returns what changed; modifies `field`.
+/// Both growths take samples from bucket queues: the solid by its value in steps of 1/256 of the grid
+/// spacing, the outside by its squared lattice distance to the solid; within a bucket the last offered
+/// first. Memory: one byte of state per sample, plus (for the outside growth) a float per sample.
 HandleCut cut_handles(Grid3<double>& field, double level);
+HandleCut cut_handles(Grid3<float>& field, double level);
 
 /// One local change of a per-handle repair: a connected set of samples moved to the other side.
 struct TopologyChange {
@@ -51,9 +56,11 @@ struct HandleRepair {
 /// alone. This is a heuristic: the caller must check the genus of the result and fall back to
 /// cut_handles (undo_handle_repair restores the field). Same preconditions and throws as cut_handles.
 HandleRepair repair_handles(Grid3<double>& field, double level);
+HandleRepair repair_handles(Grid3<float>& field, double level);
 
 /// Restores the field values a repair changed.
 void undo_handle_repair(Grid3<double>& field, const HandleRepair& repair);
+void undo_handle_repair(Grid3<float>& field, const HandleRepair& repair);
 
 }  // namespace spheremap
 
@@ -73,7 +80,13 @@ struct GenusRepair {
 /// field while it still changes something (at most 4 rounds); if the largest component still has
 /// handles, the field is restored and cut_handles applied (always genus 0, one
 /// component). Other components (detached pieces, cavities) are left as they are by the per-handle
-/// repair. Same preconditions and throws as cut_handles.
-GenusRepair repair_outer_genus(Grid3<double>& field, double level);
+/// repair. Same preconditions and throws as cut_handles. `threads` is passed to contour_isosurface.
+GenusRepair repair_outer_genus(Grid3<double>& field, double level, int threads = 0);
+GenusRepair repair_outer_genus(Grid3<float>& field, double level, int threads = 0);
+
+/// The same, for a caller that already knows the genus of the largest component of the field's contour
+/// (`outer_genus_before` >= 0) and wants the contour of the field as repaired: `final_contour` receives
+/// it (contour_isosurface(field, level, threads)), so that no contour is computed twice.
+GenusRepair repair_outer_genus(Grid3<float>& field, double level, int outer_genus_before, int threads, Mesh& final_contour);
 
 }  // namespace spheremap

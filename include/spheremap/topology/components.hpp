@@ -15,7 +15,8 @@ struct MeshComponent {
   /// Signed enclosed volume (divergence theorem): positive for a surface oriented outward (a piece),
   /// negative for one oriented toward the inside of a void it bounds (a cavity of an outward solid).
   double signed_volume = 0;
-  /// From the Euler characteristic V - E + F = 2 - 2g; meaningful for closed 2-manifold components.
+  /// From the Euler characteristic V - E + F = 2 - 2g with E = 3F/2 (every edge in two triangles): only
+  /// meaningful for closed 2-manifold components, which is what the contours of this library are.
   int genus = 0;
 };
 
