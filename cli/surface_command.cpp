@@ -60,6 +60,9 @@ Command add_surface_command(CLI::App& app) {
                                          100 * (repair.area_after / repair.area_before - 1));
               else if (repair.genus_before != 0)
                 std::cout << fmt::format("  outer surface genus {} (--keep-topology: not repaired)\n", repair.genus_before);
+              std::string stages;
+              for (const auto& t : result.timings) stages += fmt::format("{}{} {:.2f} s", stages.empty() ? "" : ", ", t.stage, t.seconds);
+              std::cout << "  timings: " << stages << "\n";
             }
             return 0;
           }};

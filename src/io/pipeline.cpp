@@ -171,15 +171,12 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
     report.area = component.area;
     report.volume = std::abs(component.signed_volume);
     report.genus = component.genus;
-    std::vector<std::int32_t> component_atoms;
-    component_atoms.reserve(component.triangles.size());
+    std::vector<bool> has_atom(atoms.size(), false);
     for (const auto t : component.triangles)
-      for (const auto v : mesh.triangles[t]) component_atoms.push_back(atom_of[v]);
-    std::sort(component_atoms.begin(), component_atoms.end());
-    component_atoms.erase(std::unique(component_atoms.begin(), component_atoms.end()), component_atoms.end());
+      for (const auto v : mesh.triangles[t]) has_atom[static_cast<std::size_t>(atom_of[v])] = true;
     std::vector<std::string> labels;
-    labels.reserve(component_atoms.size());
-    for (const auto a : component_atoms) labels.push_back(residue_label(atoms[a]));
+    for (std::size_t a = 0; a < atoms.size(); ++a)
+      if (has_atom[a]) labels.push_back(residue_label(atoms[a]));
     labels = sorted_unique(std::move(labels));
     report.residue_count = static_cast<std::int64_t>(labels.size());
     if (labels.size() > kListedResidues) labels.resize(kListedResidues);

@@ -80,6 +80,7 @@ constexpr std::uint8_t kInOutside = 2;    // reached by the outside's growth
 constexpr std::uint8_t kQueued = 4;       // in the growth's queue
 constexpr std::uint8_t kClustered = 8;    // assigned to a cluster of left-out samples
 constexpr std::uint8_t kToggled = 16;     // in the cluster whose Euler change is being counted
+constexpr std::uint8_t kInside = 32;      // field > level (kept in the state so that growths read one array)
 
 // Neighbour access: sample index offsets, and a border test only for samples on the grid's outer layer.
 class Lattice {
@@ -170,7 +171,8 @@ void grow(const Grid3<T>& field, double level, bool solid, std::vector<std::uint
   const auto total = lattice.count();
   const auto& simple = simple_table();
   const T* values = field.values.data();
-  auto candidate = [&](std::int64_t s) { return solid ? values[s] > level : values[s] <= level; };
+  const std::uint8_t wanted = solid ? kInside : 0;
+  auto candidate = [&](std::int64_t s) { return (state[s] & kInside) == wanted; };
   std::vector<float> depth;
   double top_value = level;
   if (solid) {
@@ -267,6 +269,7 @@ struct Star {
 template <typename T>
 std::vector<std::uint8_t> grow_both(const Grid3<T>& field, double level) {
   std::vector<std::uint8_t> state(static_cast<std::size_t>(field.count()), 0);
+  for (std::size_t s = 0; s < state.size(); ++s) state[s] = field.values[s] > level ? kInside : 0;
   grow(field, level, true, state);
   grow(field, level, false, state);
   return state;
