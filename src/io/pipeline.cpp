@@ -200,9 +200,11 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
   };
   Mesh mesh;
   {
-    // The single-precision field is the only per-sample array (4 bytes per sample); it is freed as soon
-    // as the final contour exists.
-    Grid3<float> field = solvent_excluded_field_float(atoms, surface);
+    // The single-precision field (4 bytes per sample) is freed as soon as the final contour exists; the
+    // repair adds a state byte and a float distance per sample, counted against the memory budget.
+    SurfaceOptions budgeted = surface;
+    if (!keep_topology) budgeted.extra_bytes_per_sample += 5;
+    Grid3<float> field = solvent_excluded_field_float(atoms, budgeted);
     lap("surface_field");
     mesh = contour_isosurface(field, 0.0, surface.threads);
     const auto before = mesh_components(mesh);

@@ -462,11 +462,12 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
   // The field is the only per-sample array (built in place); the surface probe centres (24 bytes each,
   // about 100 per atom at 0.25 Å) and the atom lists are small beside it.
   const double samples = static_cast<double>(field.size[0]) * static_cast<double>(field.size[1]) * static_cast<double>(field.size[2]);
-  const double bytes = samples * static_cast<double>(sizeof(T));
+  const double per_sample = static_cast<double>(sizeof(T)) + options.extra_bytes_per_sample;
+  const double bytes = samples * per_sample;
   if (bytes > options.max_grid_bytes) {
     const double fitting = h * std::cbrt(bytes / options.max_grid_bytes) * 1.01;
-    throw InputError(fmt::format("a {} x {} x {} grid at {} Å would need {:.1f} GB ({} bytes per sample; budget {:.1f} GB); use --grid {:.2f} or coarser",
-                                 field.size[0], field.size[1], field.size[2], h, bytes / 1e9, sizeof(T), options.max_grid_bytes / 1e9,
+    throw InputError(fmt::format("a {} x {} x {} grid at {} Å would need {:.1f} GB ({:g} bytes per sample; budget {:.1f} GB); use --grid {:.2f} or coarser",
+                                 field.size[0], field.size[1], field.size[2], h, bytes / 1e9, per_sample, options.max_grid_bytes / 1e9,
                                  std::ceil(fitting * 100) / 100));
   }
   const int threads = detail::surface_threads(options.threads);
