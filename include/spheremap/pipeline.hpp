@@ -69,7 +69,7 @@ struct MolecularSurface {
   Mesh mesh;  // every component, with atom provenance
   std::vector<MeshComponent> components;          // largest area first
   std::vector<SurfaceComponentReport> reports;    // same order
-  std::vector<StageTime> timings;                 // wall-clock seconds of its stages ("surface_field", ...)
+  std::vector<StageTime> timings;                 // wall-clock seconds of its stages ("field", "contour", ...)
 };
 
 /// True for the extensions read_structure reads.
