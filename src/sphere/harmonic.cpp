@@ -1,6 +1,7 @@
 #include "harmonic.hpp"
 
 #include <Eigen/CholmodSupport>
+#include <cholmod.h>
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
 #include <omp.h>
@@ -175,8 +176,6 @@ std::vector<std::int32_t> nested_dissection_order(const Eigen::SparseMatrix<doub
   return order;
 }
 
-}  // namespace
-
 // Debian's CHOLMOD opens an OpenMP parallel region (with a fixed thread count that OMP_NUM_THREADS does
 // not lower) for every supernode: on a 400k-vertex surface that is 170,000 thread wake-ups, 30% of the
 // factorization's wall time, and a second busy core that a parallel batch needs. No active parallel
@@ -186,29 +185,14 @@ void keep_openmp_serial() {
   std::call_once(once, [] { omp_set_max_active_levels(0); });
 }
 
-SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x, Solver solver, double tolerance,
-                          std::int64_t max_sweeps) {
-  if (solver == Solver::kGaussSeidel) return solve_gauss_seidel(problem, x, tolerance, max_sweeps);
-  keep_openmp_serial();
+// The matrix of `problem` over its unknowns, both triangles (for the fill-reducing order and LU).
+Eigen::SparseMatrix<double> problem_matrix(const HarmonicProblem& problem, const std::vector<std::int32_t>& unknown_index,
+                                           std::int32_t unknowns) {
   const auto& rings = *problem.rings;
   const auto& w = problem.weights->values;
-  const auto n = rings.vertex_count();
-  std::vector<std::int32_t> unknown_index(n, -1);
-  std::int32_t unknowns = 0;
-  for (std::int32_t v = 0; v < n; ++v)
-    if (!problem.fixed[v]) unknown_index[v] = unknowns++;
-  SolveStats stats;
-  if (unknowns == 0) {
-    stats.solver = "none";
-    return stats;
-  }
-  std::vector<Vec3> unknown_positions(unknowns);
-  for (std::int32_t v = 0; v < n; ++v)
-    if (!problem.fixed[v]) unknown_positions[unknown_index[v]] = (*problem.positions)[v];
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(rings.neighbors.size() + unknowns);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
-  for (std::int32_t v = 0; v < n; ++v) {
+  entries.reserve(rings.neighbors.size() + static_cast<std::size_t>(unknowns));
+  for (std::int32_t v = 0; v < rings.vertex_count(); ++v) {
     if (problem.fixed[v]) continue;
     const auto row = unknown_index[v];
     double total = 0;
@@ -216,44 +200,137 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
     for (std::size_t k = 0; k < ring.size(); ++k) {
       const auto slot = rings.offsets[v] + static_cast<std::int64_t>(k);
       total += w[slot];
-      const auto j = ring[k];
-      if (problem.fixed[j]) rhs[row] += w[slot] * neighbour_value(problem, x, slot, j);
-      else entries.emplace_back(row, unknown_index[j], -w[slot]);
+      if (!problem.fixed[ring[k]]) entries.emplace_back(row, unknown_index[ring[k]], -w[slot]);
     }
     entries.emplace_back(row, row, total);
   }
   Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
   matrix.setFromTriplets(entries.begin(), entries.end());
-  Eigen::VectorXd solution;
-  bool solved = false;
-  if (problem.weights->symmetric) {
-    // Fill-reducing order of our own (geometric nested dissection), applied by permuting the matrix
-    // and asking CHOLMOD for the natural order: its default search tries several orderings (27 s for
-    // one 100k-vertex factorization measured here) and plain AMD fills 2-4x more on surface meshes.
-    const auto permutation = nested_dissection_order(matrix, unknown_positions);
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order(unknowns);
-    for (std::int32_t k = 0; k < unknowns; ++k) order.indices()[permutation[k]] = k;
-    const Eigen::SparseMatrix<double> permuted = order * matrix * order.transpose();
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky;
-    cholesky.cholmod().print = 0;  // an indefinite matrix (cotangent weights) is expected: we fall back to LU
-    cholesky.cholmod().nmethods = 1;
-    cholesky.cholmod().method[0].ordering = CHOLMOD_NATURAL;
-    cholesky.compute(permuted);
-    if (cholesky.info() == Eigen::Success) {
-      const Eigen::VectorXd permuted_solution = cholesky.solve(order * rhs);
-      solved = cholesky.info() == Eigen::Success;
-      solution = order.inverse() * permuted_solution;
-      stats.solver = "cholmod-llt";
+  return matrix;
+}
+
+// CHOLMOD's workspace and one factor, freed on every path.
+struct Cholmod {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  Cholmod() {
+    cholmod_start(&common);
+    common.print = 0;
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_NATURAL;  // the rows come in our nested-dissection order
+  }
+  ~Cholmod() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+  Cholmod(const Cholmod&) = delete;
+  Cholmod& operator=(const Cholmod&) = delete;
+};
+
+bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32_t>& unknown_index, std::int32_t unknowns,
+                    std::vector<double>& x) {
+  keep_openmp_serial();
+  const auto& rings = *problem.rings;
+  const auto n = rings.vertex_count();
+  std::vector<Vec3> unknown_positions(static_cast<std::size_t>(unknowns));
+  for (std::int32_t v = 0; v < n; ++v)
+    if (!problem.fixed[v]) unknown_positions[unknown_index[v]] = (*problem.positions)[v];
+  const Eigen::SparseMatrix<double> matrix = problem_matrix(problem, unknown_index, unknowns);
+  // Fill-reducing order of our own (geometric nested dissection): CHOLMOD's default search tries
+  // several orderings (27 s for one 100k-vertex factorization measured here) and plain AMD fills 2-4x
+  // more on surface meshes. The lower triangle is written column by column in that order, directly in
+  // CHOLMOD's format, and factorized in natural order.
+  const auto order = nested_dissection_order(matrix, unknown_positions);  // order[k]: unknown at row k
+  std::vector<std::int32_t> row_of(static_cast<std::size_t>(unknowns));
+  for (std::int32_t k = 0; k < unknowns; ++k) row_of[order[k]] = k;
+  Cholmod cholmod;
+  cholmod_sparse* lower = cholmod_allocate_sparse(unknowns, unknowns, static_cast<std::size_t>(matrix.nonZeros()), 1, 1,
+                                                  -1, CHOLMOD_REAL, &cholmod.common);
+  if (!lower) throw std::bad_alloc();
+  auto* column_start = static_cast<int*>(lower->p);
+  auto* row_index = static_cast<int*>(lower->i);
+  auto* value = static_cast<double*>(lower->x);
+  std::int64_t next = 0;
+  std::vector<std::pair<int, double>> column;
+  for (std::int32_t k = 0; k < unknowns; ++k) {
+    column_start[k] = static_cast<int>(next);
+    column.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator entry(matrix, order[k]); entry; ++entry) {
+      const int row = row_of[entry.row()];
+      if (row >= k) column.emplace_back(row, entry.value());
+    }
+    std::sort(column.begin(), column.end());
+    for (const auto& [row, v] : column) row_index[next] = row, value[next] = v, ++next;
+  }
+  column_start[unknowns] = static_cast<int>(next);
+  cholmod.factor = cholmod_analyze(lower, &cholmod.common);
+  if (cholmod.factor) cholmod_factorize(lower, cholmod.factor, &cholmod.common);
+  cholmod_free_sparse(&lower, &cholmod.common);
+  // An indefinite matrix (cotangent weights) is expected: the caller falls back to LU.
+  if (!cholmod.factor || cholmod.common.status != CHOLMOD_OK || cholmod.factor->minor < static_cast<std::size_t>(unknowns))
+    return false;
+  cholmod_dense* rhs = cholmod_zeros(static_cast<std::size_t>(unknowns), 1, CHOLMOD_REAL, &cholmod.common);
+  if (!rhs) throw std::bad_alloc();
+  auto* b = static_cast<double*>(rhs->x);
+  const auto& w = problem.weights->values;
+  for (std::int32_t v = 0; v < n; ++v) {
+    if (problem.fixed[v]) continue;
+    const auto ring = rings.ring(v);
+    double sum = 0;
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const auto slot = rings.offsets[v] + static_cast<std::int64_t>(k);
+      if (problem.fixed[ring[k]]) sum += w[slot] * neighbour_value(problem, x, slot, ring[k]);
+    }
+    b[row_of[unknown_index[v]]] = sum;
+  }
+  cholmod_dense* solution = cholmod_solve(CHOLMOD_A, cholmod.factor, rhs, &cholmod.common);
+  cholmod_free_dense(&rhs, &cholmod.common);
+  if (!solution) throw std::runtime_error("the Cholesky solve failed");
+  const auto* values = static_cast<const double*>(solution->x);
+  for (std::int32_t v = 0; v < n; ++v)
+    if (!problem.fixed[v]) x[v] = values[row_of[unknown_index[v]]];
+  cholmod_free_dense(&solution, &cholmod.common);
+  return true;
+}
+
+}  // namespace
+
+SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x, Solver solver, double tolerance,
+                          std::int64_t max_sweeps) {
+  if (solver == Solver::kGaussSeidel) return solve_gauss_seidel(problem, x, tolerance, max_sweeps);
+  SolveStats stats;
+  const auto n = problem.rings->vertex_count();
+  std::vector<std::int32_t> unknown_index(n, -1);
+  std::int32_t unknowns = 0;
+  for (std::int32_t v = 0; v < n; ++v)
+    if (!problem.fixed[v]) unknown_index[v] = unknowns++;
+  if (unknowns == 0) {
+    stats.solver = "none";
+    return stats;
+  }
+  if (problem.weights->symmetric && solve_cholesky(problem, unknown_index, unknowns, x)) {
+    stats.solver = "cholmod-llt";
+    return stats;
+  }
+  // Non-symmetric weights (mean-value), or an indefinite matrix (cotangent weights).
+  const Eigen::SparseMatrix<double> matrix = problem_matrix(problem, unknown_index, unknowns);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(unknowns);
+  const auto& rings = *problem.rings;
+  for (std::int32_t v = 0; v < n; ++v) {
+    if (problem.fixed[v]) continue;
+    const auto ring = rings.ring(v);
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const auto slot = rings.offsets[v] + static_cast<std::int64_t>(k);
+      if (problem.fixed[ring[k]])
+        rhs[unknown_index[v]] += problem.weights->values[slot] * neighbour_value(problem, x, slot, ring[k]);
     }
   }
-  if (!solved) {
-    Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(matrix);
-    if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU factorization failed (singular system)");
-    solution = lu.solve(rhs);
-    if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU solve failed");
-    stats.solver = "umfpack-lu";
-  }
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(matrix);
+  if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU factorization failed (singular system)");
+  const Eigen::VectorXd solution = lu.solve(rhs);
+  if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU solve failed");
+  stats.solver = "umfpack-lu";
   for (std::int32_t v = 0; v < n; ++v)
     if (!problem.fixed[v]) x[v] = solution[unknown_index[v]];
   return stats;
