@@ -199,5 +199,49 @@ TEST(Handles, RandomNecklacesGetAGenusZeroOuterSurface) {
   EXPECT_GT(per_handle, 0);
 }
 
+TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourIsReturned) {
+  // The pipeline repairs the float field and takes the last contour from the repair: the same changes as
+  // for the double field (the values are small integers and halves, exact in both), and that contour is
+  // the repaired field's.
+  std::mt19937 random(23);
+  std::uniform_real_distribution<double> step(-1.0, 1.0);
+  int repaired = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<Vec3> centres{{0, 0, 0}};
+    while (centres.size() < 50) {
+      Vec3 d{step(random), step(random), step(random)};
+      if (norm(d) < 0.2) continue;
+      Vec3 next = centres.back() + (1.0 / norm(d)) * d;
+      for (auto& x : next) x = std::clamp(x, -2.5, 2.5);
+      centres.push_back(next);
+    }
+    auto grid = sample(30, 0.25, {-3.75, -3.75, -3.75}, [&](const Vec3& p) {
+      double best = -1e9;
+      for (const auto& c : centres) best = std::max(best, 0.75 - norm(p - c));
+      return std::round(best * 8) / 8;  // exact in float too
+    });
+    Grid3<float> single;
+    single.size = grid.size, single.spacing = grid.spacing, single.origin = grid.origin;
+    single.values.assign(grid.values.begin(), grid.values.end());
+    const auto before = mesh_components(contour_isosurface(single, 0));
+    ASSERT_FALSE(before.empty());
+    const auto in_double = repair_outer_genus(grid, 0);
+    Mesh final_contour;
+    const auto in_single = repair_outer_genus(single, 0, before.front().genus, 0, final_contour);
+    EXPECT_EQ(in_single.method, in_double.method) << "trial " << trial;
+    EXPECT_EQ(in_single.samples_changed, in_double.samples_changed) << "trial " << trial;
+    for (std::size_t s = 0; s < grid.values.size(); ++s)
+      ASSERT_EQ(single.values[s] > 0, grid.values[s] > 0) << "trial " << trial << " sample " << s;
+    const Mesh recontoured = contour_isosurface(single, 0);
+    EXPECT_EQ(final_contour.triangles, recontoured.triangles);
+    EXPECT_EQ(final_contour.positions, recontoured.positions);
+    const auto after = mesh_components(final_contour);
+    ASSERT_FALSE(after.empty());
+    EXPECT_EQ(after.front().genus, 0);
+    repaired += in_single.method != "none";
+  }
+  EXPECT_GT(repaired, 0);
+}
+
 }  // namespace
 }  // namespace spheremap
