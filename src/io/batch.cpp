@@ -418,6 +418,8 @@ const std::vector<std::string>& summary_columns() {
     std::vector<std::string> c = {"input", "output", "weights", "status", "exit_code", "message"};
     for (const auto& column : report_columns_before_repair()) c.emplace_back(column.column);
     c.emplace_back("genus_before_repair");
+    c.emplace_back("handles_cut");
+    c.emplace_back("tunnels_filled");
     for (const auto& column : report_columns_after_repair()) c.emplace_back(column.column);
     for (int k = 0; k < kOctants; ++k) c.push_back(fmt::format("octant_area_percent_{}", k));
     c.emplace_back("octant_rms_deviation_percent");
@@ -453,6 +455,17 @@ Json summary_row(const BatchInput& input, Weights weights, const fs::path& root,
   // handle repair, when the report has it.
   row["genus_before_repair"] = at(r, {"structure"}).is_object() ? at(r, {"structure", "topology_repair", "genus_before"})
                                                                 : at(r, {"mesh", "genus"});
+  const Json& changes = at(r, {"structure", "topology_repair", "changes"});
+  if (changes.is_array()) {
+    std::int64_t cuts = 0, fills = 0;
+    for (const auto& change : changes) {
+      const Json& kind = at(change, {"kind"});
+      cuts += kind == "cut";
+      fills += kind == "fill";
+    }
+    row["handles_cut"] = cuts;
+    row["tunnels_filled"] = fills;
+  }
   for (const auto& column : report_columns_after_repair()) row[column.column] = at_path(r, column.path);
   const Json& octants = at(r, {"distortion", "octant_area_percent"});
   for (int k = 0; k < kOctants; ++k)
