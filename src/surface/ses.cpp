@@ -494,7 +494,7 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
 
 template <typename T>
 Mesh contour_with_atoms(const Grid3<T>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  Mesh mesh = contour_isosurface(field, 0.0, options.threads);
+  Mesh mesh = contour_isosurface(field, 0.0, options.threads, options.contour_minimum_fraction);
   add_nearest_atoms(mesh, atoms, options);
   return mesh;
 }
@@ -513,7 +513,7 @@ Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptio
   Mesh mesh;
   {
     const Grid3<float> field = solvent_excluded_field_float(atoms, options);
-    mesh = contour_isosurface(field, 0.0, options.threads);
+    mesh = contour_isosurface(field, 0.0, options.threads, options.contour_minimum_fraction);
   }
   add_nearest_atoms(mesh, atoms, options);
   return mesh;

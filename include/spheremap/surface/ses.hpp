@@ -6,6 +6,7 @@
 
 #include "spheremap/mesh.hpp"
 #include "spheremap/molecule/structure.hpp"
+#include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/grid.hpp"
 
 namespace spheremap {
@@ -21,6 +22,10 @@ struct SurfaceOptions {
   /// enclosed cavities are filled). true: probe positions in enclosed pockets carve too, so each cavity
   /// that holds a probe becomes its own closed component, facing into the cavity.
   bool carve_cavities = false;
+  /// Vertices of the mesh are kept at least this fraction of a step away from grid samples
+  /// (contour_isosurface's minimum_fraction): 0.1 makes no sliver triangles but biases the area upwards;
+  /// 0 is the plain linear interpolation.
+  double contour_minimum_fraction = kContourMinimumFraction;
   /// Threads for the surface stage (0: one per hardware thread). Results do not depend on it.
   int threads = 0;
 };
