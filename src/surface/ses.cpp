@@ -360,8 +360,8 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   // The exposed arcs, atom chunk by atom chunk (circles (i, j) with i < j, by i then j; arcs by angle).
   struct ChunkArcs {
     std::int64_t arcs = 0;
-    std::vector<Vec3> samples;  // grid units
-    std::vector<std::int32_t> sample_arc;  // local arc index
+    std::vector<Vec3> samples, vertices;  // grid units; the vertices (touching three atoms) once each
+    std::vector<std::int32_t> sample_arc, vertex_arc;  // local arc index
     std::vector<std::pair<VertexKey, std::int32_t>> ends;  // local arc
     std::vector<std::pair<std::int32_t, std::int64_t>> links;  // local arc, label (0 outside, p pocket)
   };
@@ -475,6 +475,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
             for (const auto& [angle, third] : {std::pair{gap.from, gap.from_atom}, std::pair{gap.to, gap.to_atom}}) {
               const Vec3 corner = point_at(angle);
               out.ends.push_back({vertex_key(index, j, third, corner), arc});
+              if (third > j) out.vertices.push_back(to_grid(corner)), out.vertex_arc.push_back(arc);
             }
           }
           // Samples every half step strictly inside the arc (angles 2π s / steps, as on a whole circle).
@@ -587,11 +588,14 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         }
     }
     // Probe centres touching two atoms lie on the circles where their enlarged spheres meet: these shape
-    // the re-entrant (concave) parts of the surface (samples every half step).
+    // the re-entrant (concave) parts of the surface (samples every half step, and the vertices where
+    // three spheres meet).
     const auto& arcs = chunk_arcs[static_cast<std::size_t>(chunk)];
     const std::int64_t offset = first_arc + arc_start[static_cast<std::size_t>(chunk)];
     for (std::size_t s = 0; s < arcs.samples.size(); ++s)
       if (carves[static_cast<std::size_t>(offset + arcs.sample_arc[s])]) out.push_back(arcs.samples[s]);
+    for (std::size_t s = 0; s < arcs.vertices.size(); ++s)
+      if (carves[static_cast<std::size_t>(offset + arcs.vertex_arc[s])]) out.push_back(arcs.vertices[s]);
   });
   chunk_arcs.clear();
   std::size_t total = 0;

@@ -36,9 +36,10 @@ struct SurfaceOptions {
 /// reach from outside the molecule (with carve_cavities: also those in enclosed pockets). The SES
 /// encloses g > 0. Probe centres are the grid samples outside the SAS that the probe reaches (exact
 /// Euclidean distance transform), plus exact points of the SAS surface: radial projections of samples
-/// just inside each enlarged sphere (next to a reached sample) and samples (every half grid step) of
-/// the exposed arcs of the circles where two enlarged spheres meet, which keep re-entrant regions
-/// accurate below the grid spacing; each such point lowers g within probe + sqrt(3) steps of it, so g is
+/// just inside each enlarged sphere (next to a reached sample), samples (every half grid step) of the
+/// exposed arcs of the circles where two enlarged spheres meet, and the vertices where three meet (probe
+/// positions touching three atoms, the deepest of a crevice), which keep re-entrant regions accurate
+/// below the grid spacing; each such point lowers g within probe + sqrt(3) steps of it, so g is
 /// exact (for this set of centres) wherever |g| < sqrt(3) steps, i.e. at both ends of every lattice edge
 /// the surface crosses. Reachability is decided as a probe rolling on the SAS would (as MSMS does): the
 /// grid samples joined to the grid border through the lattice, plus every pocket of samples and every
