@@ -174,6 +174,44 @@ TEST(Ses, CavitiesAreFilledByDefaultAndCarvedOnRequest) {
   EXPECT_GT(-parts[1].second, 4.0 / 3 * std::numbers::pi * std::pow(10 - 3.1 + 1.4, 3) * 0.9);
 }
 
+// hollow_shell() with one window: the shell's atoms near the +z pole are replaced by a ring of 14
+// atoms of radius `ring` (centres) around the z axis. The probe centre passes the window iff
+// ring > 1.7 + 1.4: with ring = 3.2 Å its passage is 0.2 Å wide, narrower than the grid.
+std::vector<Atom> shell_with_window(double ring) {
+  std::vector<Atom> atoms;
+  for (const Atom& a : hollow_shell())
+    if (a.position[2] < 0 || std::hypot(a.position[0], a.position[1]) >= ring + 1.2) atoms.push_back(a);
+  const double height = std::sqrt(100 - ring * ring);
+  for (int k = 0; k < 14; ++k) {
+    const double angle = 2 * std::numbers::pi * k / 14;
+    atoms.push_back(atom_at({ring * std::cos(angle), ring * std::sin(angle), height}, 1.7, 1000 + k));
+  }
+  return atoms;
+}
+
+TEST(Ses, AProbePassesAChannelNarrowerThanTheGrid) {
+  for (const double grid : {0.5, 0.25}) {
+    SurfaceOptions options;
+    options.grid = grid;
+    // Closed window (the ring's enlarged spheres overlap on the axis): the void is filled, as without
+    // a window. Open window, 0.2 Å wide for the probe centre: the probe rolls in and carves the void,
+    // which joins the outer surface (no lattice sample lies in the passage: a lattice flood fill
+    // alone filled it).
+    const Mesh closed = solvent_excluded_surface(shell_with_window(3.0), options);
+    const Mesh open = solvent_excluded_surface(shell_with_window(3.2), options);
+    expect_closed_oriented_manifold(closed);
+    expect_closed_oriented_manifold(open);
+    const auto closed_parts = components_of(closed), open_parts = components_of(open);
+    ASSERT_EQ(closed_parts.size(), 1u) << grid;
+    ASSERT_EQ(open_parts.size(), 1u) << grid;
+    const double filled = components_of(solvent_excluded_surface(hollow_shell(), options)).front().second;
+    EXPECT_NEAR(closed_parts[0].second / filled, 1.0, 0.01) << grid;
+    // Carved: the ball of radius 10 - 3.1 + 1.4 Å swept by the probe inside is gone from the volume.
+    EXPECT_LT(open_parts[0].second, filled - 0.9 * 4.0 / 3 * std::numbers::pi * std::pow(10 - 3.1 + 1.4, 3)) << grid;
+    EXPECT_GT(open_parts[0].first, 1.4 * closed_parts[0].first) << grid;
+  }
+}
+
 TEST(Ses, ResultsDoNotDependOnTheNumberOfThreads) {
   std::vector<Atom> atoms = hollow_shell();
   atoms.resize(300);  // an open bowl: pockets, re-entrant parts and circles of every kind
