@@ -236,6 +236,8 @@ inline std::int64_t label_of(T value) {
   return static_cast<std::int64_t>(value) - 1;
 }
 
+// A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
+// plane of their centres it lies on (the two such positions are mirror images through that plane).
 struct VertexKey {
   std::array<std::int32_t, 3> atoms;
   std::int32_t side;
@@ -270,8 +272,10 @@ class Components {
 // resolves them: 0 (probe centres) or +infinity.
 //
 // A probe rolling on the SAS from outside (as MSMS does) goes along its edges, the exposed arcs of the
-// circles where two enlarged spheres meet, from arc to arc through the vertices where three meet; the
-// lattice misses passages narrower than a step, but each such passage is threaded by exposed arcs. So
+// circles where two enlarged spheres meet, from arc to arc through the vertices where three meet. The
+// lattice misses passages narrower than a step, but exposed arcs thread them (an open window between
+// three enlarged spheres is crossed by the whole arcs of their three circles, none of which the third
+// sphere covers). So
 // the exposed arcs are computed exactly (angular intervals of each circle left uncovered by the other
 // spheres), joined at their shared vertices, and joined to the outside or a pocket when one of their
 // samples sees an outside sample of it among the 27 around its nearest sample along a segment outside
