@@ -167,58 +167,123 @@ void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, do
   });
 }
 
-// Outside samples connected to the grid border become probe centres (0); the others (enclosed pockets)
-// +infinity, or probe centres too with carve_cavities. Scan-line flood fill: memory for pending runs only.
+// Labels of outside samples (not inside the SAS) while reachability is decided: reached from the grid
+// border through the lattice (0), or in pocket p = 1, 2, ... (value p + 1): a 6-connected set of outside
+// samples that the lattice does not join to the border. Float holds these integers exactly up to 2^24.
+constexpr std::int64_t kMaximumPockets = (std::int64_t{1} << 23) - 2;
+
+// Scan-line flood fill: every sample holding `from` that is 6-connected to `seed` through such samples
+// becomes `to`. Memory for pending runs only.
 template <typename T>
-void flood_from_border(Grid3<T>& field, bool carve_cavities, int threads) {
+void flood_region(Grid3<T>& field, std::int64_t seed, T from, T to, std::vector<std::int64_t>& pending) {
   const auto [nx, ny, nz] = field.size;
   T* values = field.values.data();
-  const T unreached = static_cast<T>(kUnreached);
-  if (!carve_cavities) {
-    std::vector<std::int64_t> pending;
-    auto flood = [&](std::int64_t seed) {
-      if (values[seed] != unreached) return;
-      pending.push_back(seed);
-      while (!pending.empty()) {
-        const std::int64_t s = pending.back();
-        pending.pop_back();
-        if (values[s] != unreached) continue;
-        const std::int64_t i = s % nx, row = s - i, j = (s / nx) % ny, k = s / (nx * ny);
-        std::int64_t left = i, right = i;
-        while (left > 0 && values[row + left - 1] == unreached) --left;
-        while (right + 1 < nx && values[row + right + 1] == unreached) ++right;
-        for (std::int64_t x = left; x <= right; ++x) values[row + x] = 0;
-        const std::int64_t neighbours[4] = {j > 0 ? row - nx : -1, j + 1 < ny ? row + nx : -1, k > 0 ? row - nx * ny : -1,
-                                            k + 1 < nz ? row + nx * ny : -1};
-        for (const auto other : neighbours) {
-          if (other < 0) continue;
-          for (std::int64_t x = left; x <= right; ++x)
-            if (values[other + x] == unreached && (x == left || values[other + x - 1] != unreached)) pending.push_back(other + x);
-        }
-      }
-    };
-    for (std::int64_t k = 0; k < nz; ++k)
-      for (std::int64_t j = 0; j < ny; ++j) {
-        const std::int64_t row = field.index(0, j, k);
-        if (k == 0 || k == nz - 1 || j == 0 || j == ny - 1) {
-          for (std::int64_t i = 0; i < nx; ++i) flood(row + i);
-        } else {
-          flood(row);
-          flood(row + nx - 1);
-        }
-      }
+  if (values[seed] != from) return;
+  pending.push_back(seed);
+  while (!pending.empty()) {
+    const std::int64_t s = pending.back();
+    pending.pop_back();
+    if (values[s] != from) continue;
+    const std::int64_t i = s % nx, row = s - i, j = (s / nx) % ny, k = s / (nx * ny);
+    std::int64_t left = i, right = i;
+    while (left > 0 && values[row + left - 1] == from) --left;
+    while (right + 1 < nx && values[row + right + 1] == from) ++right;
+    for (std::int64_t x = left; x <= right; ++x) values[row + x] = to;
+    const std::int64_t neighbours[4] = {j > 0 ? row - nx : -1, j + 1 < ny ? row + nx : -1, k > 0 ? row - nx * ny : -1,
+                                        k + 1 < nz ? row + nx * ny : -1};
+    for (const auto other : neighbours) {
+      if (other < 0) continue;
+      for (std::int64_t x = left; x <= right; ++x)
+        if (values[other + x] == from && (x == left || values[other + x - 1] != from)) pending.push_back(other + x);
+    }
   }
-  const T pocket = carve_cavities ? T(0) : std::numeric_limits<T>::infinity();
-  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
-    T* plane = values + k * nx * ny;
-    for (std::int64_t s = 0; s < nx * ny; ++s)
-      if (plane[s] == unreached) plane[s] = pocket;
-  });
 }
 
-// Probe centres on the SAS surface (see solvent_excluded_field), in grid coordinates.
+// Outside samples connected to the grid border through the lattice become 0; every other 6-connected set
+// of outside samples (a pocket as far as the lattice can tell) gets its own label (see kMaximumPockets;
+// beyond that many, pockets are +infinity: never carved). Returns the number of pockets.
 template <typename T>
-std::vector<Vec3> surface_probe_centres(const Grid3<T>& field, const std::vector<Atom>& atoms, double probe, int threads) {
+std::int64_t flood_and_label_pockets(Grid3<T>& field) {
+  const auto [nx, ny, nz] = field.size;
+  const T unreached = static_cast<T>(kUnreached);
+  std::vector<std::int64_t> pending;
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      const std::int64_t row = field.index(0, j, k);
+      if (k == 0 || k == nz - 1 || j == 0 || j == ny - 1) {
+        for (std::int64_t i = 0; i < nx; ++i) flood_region(field, row + i, unreached, T(0), pending);
+      } else {
+        flood_region(field, row, unreached, T(0), pending);
+        flood_region(field, row + nx - 1, unreached, T(0), pending);
+      }
+    }
+  std::int64_t pockets = 0;
+  for (std::int64_t s = 0; s < field.count(); ++s)
+    if (field.values[static_cast<std::size_t>(s)] == unreached) {
+      const T label = pockets < kMaximumPockets ? static_cast<T>(pockets + 2) : std::numeric_limits<T>::infinity();
+      pockets += pockets < kMaximumPockets;
+      flood_region(field, s, unreached, label, pending);
+    }
+  return pockets;
+}
+
+// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
+// the SAS, or a pocket beyond kMaximumPockets).
+template <typename T>
+inline std::int64_t label_of(T value) {
+  if (value == T(0)) return 0;
+  if (!(value < std::numeric_limits<T>::infinity())) return -1;
+  return static_cast<std::int64_t>(value) - 1;
+}
+
+// A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
+// plane of their centres it lies on (the two such positions are mirror images through that plane).
+struct VertexKey {
+  std::array<std::int32_t, 3> atoms;
+  std::int32_t side;
+  auto operator<=>(const VertexKey&) const = default;
+};
+
+// Union-find on integer nodes, smaller root wins (deterministic).
+class Components {
+ public:
+  explicit Components(std::size_t n) : parent_(n) {
+    for (std::size_t v = 0; v < n; ++v) parent_[v] = static_cast<std::int64_t>(v);
+  }
+  std::int64_t find(std::int64_t v) {
+    while (parent_[static_cast<std::size_t>(v)] != v) {
+      auto& p = parent_[static_cast<std::size_t>(v)];
+      p = parent_[static_cast<std::size_t>(p)];
+      v = p;
+    }
+    return v;
+  }
+  void join(std::int64_t a, std::int64_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::int64_t> parent_;
+};
+
+// Probe centres on the SAS surface (see solvent_excluded_field), in grid coordinates; decides on the way
+// which pockets of `field` (labelled by flood_and_label_pockets) a probe reaches from outside, and
+// resolves them: 0 (probe centres) or +infinity.
+//
+// A probe rolling on the SAS from outside (as MSMS does) goes along its edges, the exposed arcs of the
+// circles where two enlarged spheres meet, from arc to arc through the vertices where three meet. The
+// lattice misses passages narrower than a step, but exposed arcs thread them (an open window between
+// three enlarged spheres is crossed by the whole arcs of their three circles, none of which the third
+// sphere covers). So
+// the exposed arcs are computed exactly (angular intervals of each circle left uncovered by the other
+// spheres), joined at their shared vertices, and joined to the outside or a pocket when one of their
+// samples sees an outside sample of it among the 27 around its nearest sample along a segment outside
+// every enlarged sphere. Pockets and arcs joined to the outside carve; the others do not (with
+// carve_cavities, everything joined to an outside sample carves).
+template <typename T>
+std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, std::int64_t pockets,
+                                        bool carve_cavities, int threads) {
   const double h = field.spacing;
   const auto [nx, ny, nz] = field.size;
   const auto count = static_cast<std::int32_t>(atoms.size());
@@ -253,20 +318,226 @@ std::vector<Vec3> surface_probe_centres(const Grid3<T>& field, const std::vector
   neighbours.reserve(static_cast<std::size_t>(neighbour_start.back()));
   for (auto& part : chunk_neighbours) neighbours.insert(neighbours.end(), part.begin(), part.end()), std::vector<std::int32_t>().swap(part);
 
-  // Whether p (on the sphere of `self`) is strictly inside another enlarged sphere, `excluded` aside.
+  // Whether p (on the sphere of `self`) is strictly inside another enlarged sphere.
   // `hint` remembers the last covering atom: neighbouring points are mostly covered by the same one.
-  auto covered = [&](const Vec3& p, std::int32_t self, std::int32_t excluded, std::int32_t& hint) {
-    if (hint >= 0 && hint != self && hint != excluded && squared_distance(p, atoms[hint].position) < reach2[hint]) return true;
+  auto covered = [&](const Vec3& p, std::int32_t self, std::int32_t& hint) {
+    if (hint >= 0 && hint != self && squared_distance(p, atoms[hint].position) < reach2[hint]) return true;
     for (auto m = neighbour_start[self]; m < neighbour_start[self + 1]; ++m) {
       const std::int32_t other = neighbours[static_cast<std::size_t>(m)];
-      if (other != excluded && squared_distance(p, atoms[other].position) < reach2[other]) {
+      if (squared_distance(p, atoms[other].position) < reach2[other]) {
         hint = other;
         return true;
       }
     }
     return false;
   };
-  // A centre on the SAS surface counts when a carving sample (0) is among the 27 around its nearest sample.
+  // Whether the segment from p to q (Å) stays outside every enlarged sphere (it may touch them: p and q
+  // may lie on the SAS).
+  auto segment_free = [&](const Vec3& p, const Vec3& q) {
+    const Vec3 d = q - p;
+    const double length2 = dot(d, d);
+    bool free = true;
+    grid.near(0.5 * (p + q), 0.5 * std::sqrt(length2) + largest_reach, [&](std::int32_t k) {
+      if (!free) return;
+      const Vec3 w = p - atoms[k].position;
+      const double t = length2 > 0 ? std::clamp(-dot(w, d) / length2, 0.0, 1.0) : 0.0;
+      const Vec3 nearest = w + t * d;
+      free = dot(nearest, nearest) >= reach2[k] * (1 - 1e-9);
+    });
+    return free;
+  };
+  auto to_grid = [&](const Vec3& p) { return Vec3{(p[0] - field.origin[0]) / h, (p[1] - field.origin[1]) / h, (p[2] - field.origin[2]) / h}; };
+  auto value_at = [&](std::int64_t a, std::int64_t b, std::int64_t c) { return field.values[static_cast<std::size_t>(field.index(a, b, c))]; };
+  // Calls visit(label, i, j, k) for the outside samples among the 27 around the nearest sample of `unit`.
+  auto around = [&](const Vec3& unit, auto&& visit) {
+    const auto ci = static_cast<std::int64_t>(std::llround(unit[0]));
+    const auto cj = static_cast<std::int64_t>(std::llround(unit[1]));
+    const auto ck = static_cast<std::int64_t>(std::llround(unit[2]));
+    for (std::int64_t c = std::max<std::int64_t>(0, ck - 1); c <= std::min(nz - 1, ck + 1); ++c)
+      for (std::int64_t b = std::max<std::int64_t>(0, cj - 1); b <= std::min(ny - 1, cj + 1); ++b)
+        for (std::int64_t a = std::max<std::int64_t>(0, ci - 1); a <= std::min(nx - 1, ci + 1); ++a) {
+          const std::int64_t label = label_of(value_at(a, b, c));
+          if (label >= 0 && visit(label, a, b, c)) return;
+        }
+  };
+
+  // The exposed arcs, atom chunk by atom chunk (circles (i, j) with i < j, by i then j; arcs by angle).
+  struct ChunkArcs {
+    std::int64_t arcs = 0;
+    std::vector<Vec3> samples, vertices;  // grid units; the vertices (touching three atoms) once each
+    std::vector<std::int32_t> sample_arc, vertex_arc;  // local arc index
+    std::vector<std::pair<VertexKey, std::int32_t>> ends;  // local arc
+    std::vector<std::pair<std::int32_t, std::int64_t>> links;  // local arc, label (0 outside, p pocket)
+  };
+  std::vector<ChunkArcs> chunk_arcs(static_cast<std::size_t>(chunks));
+  // A vertex of the SAS: its three atoms (ascending) and the side of their centres' plane it lies on.
+  auto vertex_key = [&](std::int32_t a, std::int32_t b, std::int32_t c, const Vec3& point) {
+    VertexKey key{a, b, c, 0};
+    std::sort(key.atoms.begin(), key.atoms.end());
+    const Vec3& o = atoms[key.atoms[0]].position;
+    key.side = dot(cross(atoms[key.atoms[1]].position - o, atoms[key.atoms[2]].position - o), point - o) > 0;
+    return key;
+  };
+  constexpr double kTurn = 2 * std::numbers::pi;
+  detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
+    ChunkArcs& out = chunk_arcs[static_cast<std::size_t>(chunk)];
+    struct Covering {
+      double start, length;
+      std::int32_t atom;
+    };
+    struct Gap {
+      double from, to;
+      std::int32_t from_atom, to_atom;
+    };
+    std::vector<Covering> coverings;
+    std::vector<Gap> gaps;
+    std::vector<std::int64_t> linked;
+    for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
+      const auto& atom = atoms[index];
+      const double reach_i = reach[index];
+      for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) {
+        const std::int32_t j = neighbours[static_cast<std::size_t>(m)];
+        if (j <= index) continue;
+        const double reach_j = reach[j];
+        const Vec3 axis = atoms[j].position - atom.position;
+        const double d = norm(axis);
+        if (d >= reach_i + reach_j || d <= std::abs(reach_i - reach_j) || d == 0) continue;
+        const double along = (d * d + reach_i * reach_i - reach_j * reach_j) / (2 * d);
+        const double circle_radius = std::sqrt(std::max(0.0, reach_i * reach_i - along * along));
+        const Vec3 unit_axis = (1 / d) * axis;
+        const Vec3 centre = atom.position + along * unit_axis;
+        const Vec3 helper = std::abs(unit_axis[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+        const Vec3 u = normalized(cross(unit_axis, helper));
+        const Vec3 v = cross(unit_axis, u);
+        // The angles covered by each other enlarged sphere k: |p(θ) - c_k|² < R_k² with
+        // p(θ) = centre + ρ (cos θ u + sin θ v), i.e. 2ρ m cos(θ - φ) < room, where (a, b) = m (cos φ, sin φ)
+        // are the coordinates of centre - c_k in the circle's plane; a whole circle inside k is skipped.
+        // Most circles of a protein are buried: skip the circle when one enlarged sphere holds all of it
+        // (its farthest point from that sphere's centre is inside); only then are the intervals computed.
+        bool buried = false;
+        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1] && !buried; ++n) {
+          const std::int32_t other = neighbours[static_cast<std::size_t>(n)];
+          if (other == j) continue;
+          const Vec3 offset = atoms[other].position - centre;
+          const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
+          const double far = circle_radius + std::sqrt(b2);
+          buried = a * a + far * far < reach2[other] * (1 - 1e-12);
+        }
+        if (buried) continue;
+        coverings.clear();
+        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1]; ++n) {
+          const std::int32_t k = neighbours[static_cast<std::size_t>(n)];
+          if (k == j) continue;
+          const Vec3 offset = centre - atoms[k].position;
+          const double a = dot(offset, u), b = dot(offset, v), along_axis = dot(offset, unit_axis);
+          const double room = reach2[k] - (a * a + b * b + along_axis * along_axis) - circle_radius * circle_radius;
+          const double spread = 2 * circle_radius * std::sqrt(a * a + b * b);
+          if (room >= spread) {
+            coverings.assign(1, {0, kTurn, k});  // all of it (up to rounding: the test above missed it)
+            break;
+          }
+          if (room > -spread) {
+            const double half = std::acos(room / spread);  // exposed: |θ - φ| <= half
+            double start = std::atan2(b, a) + half;
+            start -= kTurn * std::floor(start / kTurn);
+            coverings.push_back({start, 2 * (std::numbers::pi - half), k});
+          }
+        }
+        if (coverings.size() == 1 && coverings.front().length >= kTurn) continue;
+        auto point_at = [&](double angle) { return centre + circle_radius * (std::cos(angle) * u + std::sin(angle) * v); };
+        // Exposed arcs: the gaps between the merged covered intervals, [from, to] with the atoms whose
+        // spheres end there (-1: the whole circle is exposed).
+        gaps.clear();
+        if (coverings.empty()) {
+          gaps.push_back({0, kTurn, -1, -1});
+        } else {
+          std::sort(coverings.begin(), coverings.end(), [](const Covering& x, const Covering& y) {
+            return x.start < y.start || (x.start == y.start && x.atom < y.atom);
+          });
+          const double first = coverings.front().start;
+          double reached = first + coverings.front().length;
+          std::int32_t owner = coverings.front().atom;
+          for (const auto& c : coverings)  // intervals wrapping past a full turn cover the start again
+            if (c.start + c.length - kTurn > reached) reached = c.start + c.length - kTurn, owner = c.atom;
+          for (std::size_t c = 1; c < coverings.size(); ++c) {
+            const Covering& next = coverings[c];
+            if (next.start > reached) {
+              gaps.push_back({reached, next.start, owner, next.atom});
+              reached = next.start + next.length, owner = next.atom;
+            } else if (next.start + next.length > reached) {
+              reached = next.start + next.length, owner = next.atom;
+            }
+          }
+          if (reached < first + kTurn) gaps.push_back({reached, first + kTurn, owner, coverings.front().atom});
+        }
+        const auto steps = std::max<std::int64_t>(8, ceil_int(kTurn * circle_radius / (0.5 * h)));
+        const double step_angle = kTurn / static_cast<double>(steps);
+        for (const Gap& gap : gaps) {
+          const auto arc = static_cast<std::int32_t>(out.arcs++);
+          linked.clear();
+          if (gap.from_atom >= 0) {
+            for (const auto& [angle, third] : {std::pair{gap.from, gap.from_atom}, std::pair{gap.to, gap.to_atom}}) {
+              const Vec3 corner = point_at(angle);
+              out.ends.push_back({vertex_key(index, j, third, corner), arc});
+              if (third > j) out.vertices.push_back(to_grid(corner)), out.vertex_arc.push_back(arc);
+            }
+          }
+          // Samples every half step strictly inside the arc (angles 2π s / steps, as on a whole circle).
+          const std::int64_t s0 = gap.from_atom < 0 ? 0 : floor_int(gap.from / step_angle) + 1;
+          for (std::int64_t s = s0; static_cast<double>(s) * step_angle < gap.to; ++s) {
+            const double angle = kTurn * static_cast<double>(((s % steps) + steps) % steps) / static_cast<double>(steps);
+            const Vec3 point = point_at(angle);
+            const Vec3 unit = to_grid(point);
+            out.samples.push_back(unit);
+            out.sample_arc.push_back(arc);
+            around(unit, [&](std::int64_t label, std::int64_t a, std::int64_t b, std::int64_t c) {
+              if (std::find(linked.begin(), linked.end(), label) != linked.end()) return false;
+              if (!segment_free(point, field.point(a, b, c))) return false;
+              linked.push_back(label);
+              out.links.push_back({arc, label});
+              return false;
+            });
+          }
+        }
+      }
+    }
+  });
+  // Components of outside, pockets and arcs: nodes 0 (outside), 1..pockets, then the arcs in order.
+  std::vector<std::int64_t> arc_start(static_cast<std::size_t>(chunks) + 1, 0);
+  for (std::int64_t c = 0; c < chunks; ++c) arc_start[static_cast<std::size_t>(c) + 1] = arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
+  const std::int64_t first_arc = 1 + pockets;
+  Components components(static_cast<std::size_t>(first_arc + arc_start.back()));
+  std::vector<std::pair<VertexKey, std::int64_t>> ends;
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const auto& part = chunk_arcs[static_cast<std::size_t>(c)];
+    const std::int64_t offset = first_arc + arc_start[static_cast<std::size_t>(c)];
+    for (const auto& [arc, label] : part.links) components.join(offset + arc, label);
+    for (const auto& [key, arc] : part.ends) ends.push_back({key, offset + arc});
+  }
+  std::sort(ends.begin(), ends.end());
+  for (std::size_t e = 1; e < ends.size(); ++e)
+    if (ends[e].first == ends[e - 1].first) components.join(ends[e].second, ends[e - 1].second);
+  std::vector<std::uint8_t> carves(static_cast<std::size_t>(first_arc + arc_start.back()), 0);
+  // With carve_cavities, every component holding an outside sample carves.
+  std::vector<std::uint8_t> root_carves(carves.size(), 0);
+  if (carve_cavities)
+    for (std::int64_t label = 0; label < first_arc; ++label) root_carves[static_cast<std::size_t>(components.find(label))] = 1;
+  for (std::size_t node = 0; node < carves.size(); ++node) {
+    const std::int64_t root = components.find(static_cast<std::int64_t>(node));
+    carves[node] = root == 0 || root_carves[static_cast<std::size_t>(root)];
+  }
+  // Pockets a probe reaches become probe centres; the others +infinity.
+  const std::int64_t plane = nx * ny;
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    T* values = field.values.data() + k * plane;
+    for (std::int64_t s = 0; s < plane; ++s) {
+      const std::int64_t label = label_of(values[s]);
+      if (label > 0) values[s] = carves[static_cast<std::size_t>(label)] ? T(0) : std::numeric_limits<T>::infinity();
+    }
+  });
+
+  // A point of the SAS counts as a probe centre when its arc carves; other points (radial projections,
+  // on the faces) when a carving sample (0) is among the 27 around their nearest sample.
   auto connected = [&](const Vec3& unit) {
     const auto ci = static_cast<std::int64_t>(std::llround(unit[0]));
     const auto cj = static_cast<std::int64_t>(std::llround(unit[1]));
@@ -274,11 +545,9 @@ std::vector<Vec3> surface_probe_centres(const Grid3<T>& field, const std::vector
     for (std::int64_t c = std::max<std::int64_t>(0, ck - 1); c <= std::min(nz - 1, ck + 1); ++c)
       for (std::int64_t b = std::max<std::int64_t>(0, cj - 1); b <= std::min(ny - 1, cj + 1); ++b)
         for (std::int64_t a = std::max<std::int64_t>(0, ci - 1); a <= std::min(nx - 1, ci + 1); ++a)
-          if (field.values[static_cast<std::size_t>(field.index(a, b, c))] == T(0)) return true;
+          if (value_at(a, b, c) == T(0)) return true;
     return false;
   };
-  auto to_grid = [&](const Vec3& p) { return Vec3{(p[0] - field.origin[0]) / h, (p[1] - field.origin[1]) / h, (p[2] - field.origin[2]) / h}; };
-
   std::vector<std::vector<Vec3>> chunk_centres(static_cast<std::size_t>(chunks));
   detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
     auto& out = chunk_centres[static_cast<std::size_t>(chunk)];
@@ -316,51 +585,23 @@ std::vector<Vec3> surface_probe_centres(const Grid3<T>& field, const std::vector
             const double distance = norm(x - atom.position);
             if (distance >= outer || distance < inner || distance == 0) continue;
             const Vec3 centre = atom.position + (outer / distance) * (x - atom.position);
-            if (covered(centre, index, -1, hint)) continue;
+            if (covered(centre, index, hint)) continue;
             const Vec3 unit = to_grid(centre);
             if (connected(unit)) out.push_back(unit);
           }
         }
-      // Probe centres touching two atoms lie on the circle where their enlarged spheres meet: these shape
-      // the re-entrant (concave) parts of the surface, so the circles are sampled every half grid step.
-      const double reach_i = outer;
-      for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) {
-        const std::int32_t j = neighbours[static_cast<std::size_t>(m)];
-        if (j <= index) continue;
-        const double reach_j = reach[j];
-        const Vec3 axis = atoms[j].position - atom.position;
-        const double d = norm(axis);
-        if (d >= reach_i + reach_j || d <= std::abs(reach_i - reach_j) || d == 0) continue;
-        const double along = (d * d + reach_i * reach_i - reach_j * reach_j) / (2 * d);
-        const double circle_radius = std::sqrt(std::max(0.0, reach_i * reach_i - along * along));
-        const Vec3 unit_axis = (1 / d) * axis;
-        const Vec3 centre = atom.position + along * unit_axis;
-        // Most circles of a protein are buried: skip the circle when one enlarged sphere holds all of it
-        // (its farthest point from that sphere's centre is inside).
-        bool buried = false;
-        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1] && !buried; ++n) {
-          const std::int32_t other = neighbours[static_cast<std::size_t>(n)];
-          if (other == j) continue;
-          const Vec3 offset = atoms[other].position - centre;
-          const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
-          const double far = circle_radius + std::sqrt(b2);
-          buried = a * a + far * far < reach2[other] * (1 - 1e-12);
-        }
-        if (buried) continue;
-        const Vec3 helper = std::abs(unit_axis[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-        const Vec3 u = normalized(cross(unit_axis, helper));
-        const Vec3 v = cross(unit_axis, u);
-        const auto steps = std::max<std::int64_t>(8, ceil_int(2 * std::numbers::pi * circle_radius / (0.5 * h)));
-        for (std::int64_t step = 0; step < steps; ++step) {
-          const double angle = 2 * std::numbers::pi * static_cast<double>(step) / static_cast<double>(steps);
-          const Vec3 point = centre + circle_radius * (std::cos(angle) * u + std::sin(angle) * v);
-          if (covered(point, index, j, hint)) continue;
-          const Vec3 unit = to_grid(point);
-          if (connected(unit)) out.push_back(unit);
-        }
-      }
     }
+    // Probe centres touching two atoms lie on the circles where their enlarged spheres meet: these shape
+    // the re-entrant (concave) parts of the surface (samples every half step, and the vertices where
+    // three spheres meet).
+    const auto& arcs = chunk_arcs[static_cast<std::size_t>(chunk)];
+    const std::int64_t offset = first_arc + arc_start[static_cast<std::size_t>(chunk)];
+    for (std::size_t s = 0; s < arcs.samples.size(); ++s)
+      if (carves[static_cast<std::size_t>(offset + arcs.sample_arc[s])]) out.push_back(arcs.samples[s]);
+    for (std::size_t s = 0; s < arcs.vertices.size(); ++s)
+      if (carves[static_cast<std::size_t>(offset + arcs.vertex_arc[s])]) out.push_back(arcs.vertices[s]);
   });
+  chunk_arcs.clear();
   std::size_t total = 0;
   for (const auto& part : chunk_centres) total += part.size();
   std::vector<Vec3> centres;
@@ -472,13 +713,13 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
   }
   const int threads = detail::surface_threads(options.threads);
   field.values.assign(static_cast<std::size_t>(field.count()), static_cast<T>(kUnreached));
-  // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those
-  // connected to the outside count (as for MSMS's outer surface), unless cavities are carved too.
+  // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those a
+  // probe reaches from outside count (as for MSMS's outer surface), unless cavities are carved too.
   mark_accessible_surface(field, atoms, probe, threads);
-  flood_from_border(field, options.carve_cavities, threads);
-  // More probe centres, on the SAS surface itself, next to carving samples (found before the transform,
-  // while carving samples are exactly the zeros).
-  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, threads);
+  const std::int64_t pockets = flood_and_label_pockets(field);
+  // Which pockets a probe reaches through passages narrower than a step, and more probe centres, on the
+  // SAS surface itself (found before the transform, while carving samples are exactly the zeros).
+  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, pockets, options.carve_cavities, threads);
   squared_distance_transform_in_place(field, threads);
   // Each surface centre lowers the samples within probe + sqrt(3) steps of it. That makes g exact (for
   // this set of centres) wherever |g| < sqrt(3) steps, which covers both ends of every lattice edge the
@@ -495,7 +736,7 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
 
 template <typename T>
 Mesh contour_with_atoms(const Grid3<T>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  Mesh mesh = contour_isosurface(field, 0.0, options.threads);
+  Mesh mesh = contour_isosurface(field, 0.0, options.threads, options.contour_minimum_fraction);
   add_nearest_atoms(mesh, atoms, options);
   return mesh;
 }
@@ -514,7 +755,7 @@ Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptio
   Mesh mesh;
   {
     const Grid3<float> field = solvent_excluded_field_float(atoms, options);
-    mesh = contour_isosurface(field, 0.0, options.threads);
+    mesh = contour_isosurface(field, 0.0, options.threads, options.contour_minimum_fraction);
   }
   add_nearest_atoms(mesh, atoms, options);
   return mesh;

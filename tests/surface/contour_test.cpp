@@ -77,6 +77,22 @@ TEST(Contour, RandomFieldsAlwaysGiveClosedManifolds) {
   }
 }
 
+TEST(Contour, TheMinimumFractionKeepsVerticesOffSamplesAndZeroInterpolatesPlainly) {
+  // A slab -1.5 < x < 0.03: its face x = 0.03 passes 3% of a step from the samples at x = 0.
+  const auto grid = sample(6, 1, {-2, -2, -2}, [](const Vec3& p) {
+    return std::max(std::abs(p[1]), std::abs(p[2])) > 1.5 ? -1.0 : std::min(0.03 - p[0], p[0] + 1.5);
+  });
+  for (const double fraction : {kContourMinimumFraction, 0.0, 0.02}) {
+    const Mesh mesh = contour_isosurface(grid, 0, 0, fraction);
+    expect_closed_oriented_manifold(mesh);
+    for (const auto& p : mesh.positions)
+      if (std::abs(p[1]) < 1 && std::abs(p[2]) < 1 && std::abs(p[0]) < 1 && p[0] > -0.5)  // on the plane
+        EXPECT_NEAR(p[0], std::max(0.03, fraction), 1e-12) << fraction;
+  }
+  EXPECT_THROW(contour_isosurface(grid, 0, 0, -0.1), std::invalid_argument);
+  EXPECT_THROW(contour_isosurface(grid, 0, 0, 0.5), std::invalid_argument);
+}
+
 TEST(Contour, RefusesASurfaceThatReachesTheBorder) {
   const auto grid = sample(5, 1, {0, 0, 0}, [](const Vec3&) { return 1.0; });
   EXPECT_THROW(contour_isosurface(grid, 0), std::invalid_argument);

@@ -6,6 +6,7 @@
 
 #include "spheremap/mesh.hpp"
 #include "spheremap/molecule/structure.hpp"
+#include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/grid.hpp"
 
 namespace spheremap {
@@ -21,9 +22,14 @@ struct SurfaceOptions {
   /// a state byte and a float distance per sample); counted against max_grid_bytes too.
   double extra_bytes_per_sample = 0;
   /// false: only probe positions reachable from outside the molecule carve (MSMS's outer surface;
-  /// enclosed cavities are filled). true: probe positions in enclosed pockets carve too, so each cavity
-  /// that holds a probe becomes its own closed component, facing into the cavity.
+  /// enclosed cavities are filled), also through channels narrower than the grid. true: probe positions
+  /// in enclosed pockets carve too, so each cavity that holds a probe becomes its own closed component,
+  /// facing into the cavity.
   bool carve_cavities = false;
+  /// Vertices of the mesh are kept at least this fraction of a step away from grid samples
+  /// (contour_isosurface's minimum_fraction): 0.1 makes no sliver triangles but biases the area upwards;
+  /// 0 is the plain linear interpolation.
+  double contour_minimum_fraction = kContourMinimumFraction;
   /// Threads for the surface stage (0: one per hardware thread). Results do not depend on it.
   int threads = 0;
 };
@@ -31,14 +37,19 @@ struct SurfaceOptions {
 /// Samples g(x) = (distance from x to the nearest valid probe centre) - probe, where valid probe centres
 /// are the points outside every atom's sphere enlarged by the probe (outside the SAS) that a probe can
 /// reach from outside the molecule (with carve_cavities: also those in enclosed pockets). The SES
-/// encloses g > 0. Probe centres are the grid samples outside the SAS connected to the grid border
-/// (flood fill; exact Euclidean distance transform), plus exact points of the SAS surface next to them:
-/// radial projections of samples just inside each enlarged sphere and samples of the circles where two
-/// enlarged spheres meet (every half grid step), which keep re-entrant regions accurate below the grid
-/// spacing; each such point lowers g within probe + sqrt(3) steps of it, so g is exact (for this set of
-/// centres) wherever |g| < sqrt(3) steps, i.e. at both ends of every lattice edge the surface crosses.
-/// Channels narrower than the grid spacing are not passed by the flood fill. Multithreaded
-/// (options.threads); the result is the same for any number of threads.
+/// encloses g > 0. Probe centres are the grid samples outside the SAS that the probe reaches (exact
+/// Euclidean distance transform), plus exact points of the SAS surface: radial projections of samples
+/// just inside each enlarged sphere (next to a reached sample), samples (every half grid step) of the
+/// exposed arcs of the circles where two enlarged spheres meet, and the vertices where three meet (probe
+/// positions touching three atoms, the deepest of a crevice), which keep re-entrant regions accurate
+/// below the grid spacing; each such point lowers g within probe + sqrt(3) steps of it, so g is
+/// exact (for this set of centres) wherever |g| < sqrt(3) steps, i.e. at both ends of every lattice edge
+/// the surface crosses. Reachability is decided as a probe rolling on the SAS would (as MSMS does): the
+/// grid samples joined to the grid border through the lattice, plus every pocket of samples and every
+/// exposed arc joined to them through the SAS's edges (exposed arcs, computed exactly and joined at the
+/// vertices where three enlarged spheres meet) or through segments outside every enlarged sphere, so
+/// channels narrower than a grid step are passed. Multithreaded (options.threads); the result is the
+/// same for any number of threads.
 /// Throws InputError if there are no atoms, a radius is not positive, or the grid would exceed
 /// options.max_grid_bytes (the message says how much it needs and which spacing fits).
 Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& options);
