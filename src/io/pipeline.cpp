@@ -206,14 +206,15 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     if (!keep_topology) budgeted.extra_bytes_per_sample += 5;
     Grid3<float> field = solvent_excluded_field_float(atoms, budgeted);
     lap("field");
-    mesh = contour_isosurface(field, 0.0, surface.threads);
+    mesh = contour_isosurface(field, 0.0, surface.threads, surface.contour_minimum_fraction);
     const auto before = mesh_components(mesh);
     report.genus_before = before.empty() ? 0 : before.front().genus;
     report.area_before = before.empty() ? 0 : before.front().area;
     lap("contour");
     if (!keep_topology && report.genus_before != 0) {
       mesh = Mesh{};  // the repair needs the memory; its last genus check contours the repaired field
-      const GenusRepair fix = repair_outer_genus(field, 0.0, report.genus_before, surface.threads, mesh);
+      const GenusRepair fix =
+          repair_outer_genus(field, 0.0, report.genus_before, surface.threads, surface.contour_minimum_fraction, mesh);
       double largest_radius = 0;
       for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
       const double reach = largest_radius + surface.probe + 2 * surface.grid;

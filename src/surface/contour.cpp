@@ -302,8 +302,8 @@ class Contour {
 };
 
 double checked_fraction(double minimum_fraction) {
-  if (!(minimum_fraction >= 0 && minimum_fraction < 0.5))
-    throw std::invalid_argument("contour_isosurface: the minimum fraction must be in [0, 0.5)");
+  if (!(minimum_fraction >= 0 && minimum_fraction <= 0.5))
+    throw std::invalid_argument("contour_isosurface: the minimum fraction must be in [0, 0.5]");
   return minimum_fraction;
 }
 

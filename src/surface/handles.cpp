@@ -402,19 +402,20 @@ int outer_genus(const Grid3<T>& field, double level, int threads) {
 
 // The contour of the field and the genus of its largest component; the contour is kept in *mesh if given.
 template <typename T>
-int contour_genus(const Grid3<T>& field, double level, int threads, Mesh* mesh) {
-  Mesh contour = contour_isosurface(field, level, threads);
+int contour_genus(const Grid3<T>& field, double level, int threads, double minimum_fraction, Mesh* mesh) {
+  Mesh contour = contour_isosurface(field, level, threads, minimum_fraction);
   const auto components = mesh_components(contour);
   if (mesh) *mesh = std::move(contour);
   return components.empty() ? 0 : components.front().genus;
 }
 
 template <typename T>
-GenusRepair repair_outer_genus_impl(Grid3<T>& field, double level, int genus_before, int threads, Mesh* final_contour) {
+GenusRepair repair_outer_genus_impl(Grid3<T>& field, double level, int genus_before, int threads, double minimum_fraction,
+                                    Mesh* final_contour) {
   GenusRepair result;
   result.outer_genus_before = genus_before >= 0 ? genus_before : outer_genus(field, level, threads);
   if (result.outer_genus_before == 0) {
-    if (final_contour) *final_contour = contour_isosurface(field, level, threads);
+    if (final_contour) *final_contour = contour_isosurface(field, level, threads, minimum_fraction);
     return result;
   }
   // The clusters of one round are judged against each other's original surroundings; a handle whose two
@@ -426,7 +427,7 @@ GenusRepair repair_outer_genus_impl(Grid3<T>& field, double level, int genus_bef
     result.per_handle.samples_changed += more.samples_changed;
     for (auto& change : more.changes) result.per_handle.changes.push_back(std::move(change));
     if (final_contour) *final_contour = Mesh{};  // the previous round's contour, freed before the next one
-    if (contour_genus(field, level, threads, final_contour) == 0) {
+    if (contour_genus(field, level, threads, minimum_fraction, final_contour) == 0) {
       result.method = "per-handle";
       result.samples_changed = result.per_handle.samples_changed;
       return result;
@@ -438,7 +439,7 @@ GenusRepair repair_outer_genus_impl(Grid3<T>& field, double level, int genus_bef
   result.global = cut_handles_impl(field, level);
   result.method = result.global.filled ? "fill" : "cut";
   result.samples_changed = result.global.samples_removed;
-  if (final_contour) *final_contour = contour_isosurface(field, level, threads);
+  if (final_contour) *final_contour = contour_isosurface(field, level, threads, minimum_fraction);
   return result;
 }
 
@@ -451,13 +452,14 @@ void undo_handle_repair(Grid3<float>& field, const HandleRepair& repair) { undo_
 HandleCut cut_handles(Grid3<double>& field, double level) { return cut_handles_impl(field, level); }
 HandleCut cut_handles(Grid3<float>& field, double level) { return cut_handles_impl(field, level); }
 GenusRepair repair_outer_genus(Grid3<double>& field, double level, int threads) {
-  return repair_outer_genus_impl(field, level, -1, threads, nullptr);
+  return repair_outer_genus_impl(field, level, -1, threads, kContourMinimumFraction, nullptr);
 }
 GenusRepair repair_outer_genus(Grid3<float>& field, double level, int threads) {
-  return repair_outer_genus_impl(field, level, -1, threads, nullptr);
+  return repair_outer_genus_impl(field, level, -1, threads, kContourMinimumFraction, nullptr);
 }
-GenusRepair repair_outer_genus(Grid3<float>& field, double level, int outer_genus_before, int threads, Mesh& final_contour) {
-  return repair_outer_genus_impl(field, level, outer_genus_before, threads, &final_contour);
+GenusRepair repair_outer_genus(Grid3<float>& field, double level, int outer_genus_before, int threads,
+                               double minimum_fraction, Mesh& final_contour) {
+  return repair_outer_genus_impl(field, level, outer_genus_before, threads, minimum_fraction, &final_contour);
 }
 
 }  // namespace spheremap

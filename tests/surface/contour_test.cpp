@@ -90,7 +90,15 @@ TEST(Contour, TheMinimumFractionKeepsVerticesOffSamplesAndZeroInterpolatesPlainl
         EXPECT_NEAR(p[0], std::max(0.03, fraction), 1e-12) << fraction;
   }
   EXPECT_THROW(contour_isosurface(grid, 0, 0, -0.1), std::invalid_argument);
-  EXPECT_THROW(contour_isosurface(grid, 0, 0, 0.5), std::invalid_argument);
+  EXPECT_THROW(contour_isosurface(grid, 0, 0, 0.51), std::invalid_argument);
+  // 0.5: every vertex at the midpoint of its lattice edge (the binary field contoured at 1/2).
+  const Mesh midpoints = contour_isosurface(grid, 0, 0, 0.5);
+  expect_closed_oriented_manifold(midpoints);
+  for (const auto& p : midpoints.positions) {
+    int halves = 0;
+    for (const double x : p) halves += std::abs(x * 2 - std::round(x * 2)) < 1e-12 && std::abs(x - std::round(x)) > 0.25;
+    EXPECT_GE(halves, 1) << p[0] << " " << p[1] << " " << p[2];
+  }
 }
 
 TEST(Contour, RefusesASurfaceThatReachesTheBorder) {

@@ -227,7 +227,7 @@ TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourIs
     ASSERT_FALSE(before.empty());
     const auto in_double = repair_outer_genus(grid, 0);
     Mesh final_contour;
-    const auto in_single = repair_outer_genus(single, 0, before.front().genus, 0, final_contour);
+    const auto in_single = repair_outer_genus(single, 0, before.front().genus, 0, kContourMinimumFraction, final_contour);
     EXPECT_EQ(in_single.method, in_double.method) << "trial " << trial;
     EXPECT_EQ(in_single.samples_changed, in_double.samples_changed) << "trial " << trial;
     for (std::size_t s = 0; s < grid.values.size(); ++s)

@@ -20,13 +20,14 @@ inline constexpr double kContourMinimumFraction = 0.1;
 /// whenever every sample on the grid's outer layer is outside. Triangles face outward (towards
 /// decreasing values). Vertices sit on grid edges; interpolation parameters are kept in
 /// [minimum_fraction, 1 - minimum_fraction] (0: the plain linear interpolation, which can make sliver
-/// triangles; the default 0.1 moves a vertex by at most a tenth of a step and makes none).
+/// triangles; the default 0.1 moves a vertex by at most a tenth of a step and makes none; 0.5 puts every
+/// vertex at its edge's midpoint, i.e. contours the binary inside/outside field at 1/2, as the paper does).
 /// Vertices are numbered by their grid edge (lower sample index, then edge direction: +x, +y, +z,
 /// +x+y, +x+z, +y+z, +x+y+z); triangles come cell by cell in grid order. The output is the same for
 /// any `threads` (0: one per hardware thread). Memory: the mesh, allocated once at its exact size, plus
 /// a few planes of the grid per thread.
 /// Throws std::invalid_argument if a sample of the outer layer is inside, the grid is smaller than 2³, or
-/// minimum_fraction is outside [0, 0.5).
+/// minimum_fraction is outside [0, 0.5].
 Mesh contour_isosurface(const Grid3<double>& field, double level, int threads = 0, double minimum_fraction = kContourMinimumFraction);
 Mesh contour_isosurface(const Grid3<float>& field, double level, int threads = 0, double minimum_fraction = kContourMinimumFraction);
 

@@ -86,7 +86,8 @@ GenusRepair repair_outer_genus(Grid3<float>& field, double level, int threads = 
 
 /// The same, for a caller that already knows the genus of the largest component of the field's contour
 /// (`outer_genus_before` >= 0) and wants the contour of the field as repaired: `final_contour` receives
-/// it (contour_isosurface(field, level, threads)), so that no contour is computed twice.
-GenusRepair repair_outer_genus(Grid3<float>& field, double level, int outer_genus_before, int threads, Mesh& final_contour);
+/// it (contour_isosurface(field, level, threads, minimum_fraction)), so that no contour is computed twice.
+GenusRepair repair_outer_genus(Grid3<float>& field, double level, int outer_genus_before, int threads,
+                               double minimum_fraction, Mesh& final_contour);
 
 }  // namespace spheremap
