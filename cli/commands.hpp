@@ -39,6 +39,8 @@ struct StructureCliOptions {
 /// (3,000-8,000 triangles for the paper's proteins with our contouring).
 inline constexpr double kPaperProbe = 1.8;
 inline constexpr double kPaperGrid = 2.5;
+// The paper contours the binary inside/outside grid at 1/2: every vertex at the midpoint of its edge.
+inline constexpr double kPaperContourFraction = 0.5;
 
 /// Harmonic weights by their CLI name (uniform, cotan, mean-value).
 Weights parse_weights(const std::string& name);

@@ -20,8 +20,9 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options) {
   cmd->add_flag("--no-hetero", no_hetero, "Remove ligands, ions and other HETATM groups (default: kept)");
   cmd->add_option("--radii", radii_file, "Radius table: 'ELEMENT RADIUS' per line (default: Bondi 1964)");
   cmd->add_option("--preset", preset,
-                  fmt::format("'paper': the paper's settings for reproduction (probe {} Å, Bondi radii, grid {} Å); "
-                              "--probe and --grid given explicitly still win",
+                  fmt::format("'paper': the paper's settings for reproduction (probe {} Å, Bondi radii, grid {} Å, the "
+                              "binary grid contoured at 1/2: vertices at edge midpoints); --probe and --grid given "
+                              "explicitly still win",
                               kPaperProbe, kPaperGrid))
       ->check(CLI::IsMember({"paper"}));
   cmd->add_flag("--cavities", cavities,
@@ -43,6 +44,7 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
   if (preset == "paper") {
     if (command->count("--probe") == 0) options.surface.probe = kPaperProbe;
     if (command->count("--grid") == 0) options.surface.grid = kPaperGrid;
+    options.surface.contour_minimum_fraction = kPaperContourFraction;
   }
 }
 

@@ -627,7 +627,11 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
         {"keep_waters", job.structure.keep_waters},
         {"keep_hetero", job.structure.keep_hetero},
         {"radii", radii}}},
-      {"surface", {{"probe", job.surface.probe}, {"grid", job.surface.grid}, {"carve_cavities", job.surface.carve_cavities}}},
+      {"surface",
+       {{"probe", job.surface.probe},
+        {"grid", job.surface.grid},
+        {"carve_cavities", job.surface.carve_cavities},
+        {"contour_minimum_fraction", job.surface.contour_minimum_fraction}}},
       {"keep_topology", job.keep_topology},
   };
 }

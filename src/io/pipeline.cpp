@@ -440,6 +440,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
            ? nlohmann::json{{"atoms", result.atoms},
                             {"probe", options.surface.probe},
                             {"carve_cavities", options.surface.carve_cavities},
+                            {"contour_minimum_fraction", options.surface.contour_minimum_fraction},
                             {"grid", options.surface.grid},
                             {"models_in_file", result.structure.models_in_file},
                             {"atoms_in_model", result.structure.atoms_in_model},

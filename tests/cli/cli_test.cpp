@@ -205,6 +205,24 @@ TEST_F(Cli, ComponentsOfAMolecularSurface) {
   EXPECT_FALSE(fs::exists(folder_ / "none"));
 }
 
+TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
+  const fs::path input = folder_ / "three.pdb";
+  std::ofstream(input) << "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00  0.00           N\n"
+                          "ATOM      2  CA  ALA A   1       2.400   2.300   3.100  1.00  0.00           C\n"
+                          "ATOM      3  C   ALA A   1       3.100   3.500   2.600  1.00  0.00           C\nEND\n";
+  auto settings = [&](const std::string& options) {
+    const fs::path out = folder_ / ("run" + std::to_string(std::hash<std::string>{}(options)));
+    const auto run = run_cli("map " + input.string() + " -o " + out.string() + " " + options);
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    const auto report = nlohmann::json::parse(slurp(out / "report.json"));
+    return std::make_tuple(report["structure"]["probe"].get<double>(), report["structure"]["grid"].get<double>(),
+                           report["structure"]["contour_minimum_fraction"].get<double>());
+  };
+  EXPECT_EQ(settings(""), std::make_tuple(1.4, 0.5, 0.1));
+  EXPECT_EQ(settings("--preset paper"), std::make_tuple(1.8, 2.5, 0.5));
+  EXPECT_EQ(settings("--preset paper --grid 1.5"), std::make_tuple(1.8, 1.5, 0.5));
+}
+
 TEST_F(Cli, PolesAreInputIndicesAndMustBeFarEnoughApart) {
   const Mesh ico = make_icosphere(2);
   const auto input = write_obj(folder_ / "ico.obj", ico);
