@@ -30,8 +30,11 @@ Command add_table_command(CLI::App& app);
 struct StructureCliOptions {
   std::string chains, radii_file, preset;
   bool no_hetero = false, cavities = false;
+  double mesh_edge = -1, mesh_tolerance = -1;  // -1: not given
   CLI::App* command = nullptr;
-  void add(CLI::App* command, MapJobOptions& options);
+  /// `for_map`: map and batch (simplification before the map, on by default for structures); otherwise
+  /// the surface command (simplification only when --mesh-edge is given).
+  void add(CLI::App* command, MapJobOptions& options, bool for_map = true);
   void apply(MapJobOptions& options) const;
 };
 

@@ -7,8 +7,25 @@
 
 namespace spheremap::cli {
 
-void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options) {
+void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, bool for_map) {
   command = cmd;
+  if (for_map) {
+    cmd->add_option("--mesh-edge", mesh_edge,
+                    "Simplify the surface before mapping to well-shaped triangles with edges of about this length, keeping a "
+                    "subset of its vertices (structures: default 1 Å; 0 maps the contour as it is; mesh files: only when "
+                    "given, in the mesh's units)")
+        ->check(CLI::NonNegativeNumber);
+  } else {
+    options.simplify.target_edge_length = 0;
+    cmd->add_option("--mesh-edge", mesh_edge,
+                    "Write the surface simplified to well-shaped triangles with edges of about this length in Å, a subset "
+                    "of the contour's vertices (default: the contour as it is; spheremap map uses 1 Å)")
+        ->check(CLI::NonNegativeNumber);
+  }
+  cmd->add_option("--mesh-tolerance", mesh_tolerance,
+                  "With simplification: each removed vertex stays within this distance of the triangles that replace it "
+                  "(default: a tenth of --mesh-edge)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--probe", options.surface.probe, "Probe radius in Å (default 1.4)")->check(CLI::PositiveNumber);
   cmd->add_option("--grid", options.surface.grid, "Grid spacing of the molecular surface in Å (default 0.5)")
       ->check(CLI::Range(0.05, 5.0));
@@ -45,7 +62,13 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
     if (command->count("--probe") == 0) options.surface.probe = kPaperProbe;
     if (command->count("--grid") == 0) options.surface.grid = kPaperGrid;
     options.surface.contour_minimum_fraction = kPaperContourFraction;
+    options.simplify.target_edge_length = 0;  // the paper maps its contour as it is
   }
+  if (mesh_edge >= 0) {
+    options.simplify.target_edge_length = mesh_edge;
+    options.simplify_mesh_files = mesh_edge > 0;
+  }
+  options.simplify.max_error = mesh_tolerance > 0 ? mesh_tolerance : options.simplify.target_edge_length / 10;
 }
 
 Weights parse_weights(const std::string& name) {

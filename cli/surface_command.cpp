@@ -25,7 +25,7 @@ Command add_surface_command(CLI::App& app) {
   command->add_option("-o,--output", s.output, "Output .ply file")->required();
   command->add_flag("--ascii", s.options.ascii, "ASCII PLY with full precision (%.17g)");
   command->add_flag("-q,--quiet", s.quiet, "Print nothing on success");
-  s.structure.add(command, s.options);
+  s.structure.add(command, s.options, false);
 
   return {command, [state]() {
             auto& s = *state;
@@ -38,12 +38,15 @@ Command add_surface_command(CLI::App& app) {
             } catch (const InputError& e) {
               throw InputError(fmt::format("{}: {}", s.input, e.what()));
             }
+            SimplifyReport simplification;
+            if (s.options.simplify.target_edge_length > 0)
+              result.mesh = simplify_surface(result.mesh, s.options.simplify, &simplification);
             const Mesh& surface = result.mesh;
             write_ply(s.output, surface, PlyWriteOptions{s.options.ascii});
             if (!s.quiet) {
               double area = 0;
               for (const auto& c : result.components) area += c.area;
-              std::cout << fmt::format("{}: {} vertices, {} triangles, area {:.1f} Å² (all components; probe {} Å, grid {} Å)\n",
+              std::cout << fmt::format("{}: {} vertices, {} triangles; contour area {:.1f} Å² (all components; probe {} Å, grid {} Å)\n",
                                        s.output, surface.vertex_count(), surface.triangle_count(), area,
                                        s.options.surface.probe, s.options.surface.grid);
               for (std::size_t c = 0; c < result.reports.size(); ++c) {
@@ -51,6 +54,13 @@ Command add_surface_command(CLI::App& app) {
                 std::cout << fmt::format("  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} residues\n",
                                          c, r.kind, r.triangles, r.area, r.volume, r.genus, r.residue_count);
               }
+              if (s.options.simplify.target_edge_length > 0)
+                std::cout << fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g} Å), area {:.1f} -> {:.1f} "
+                                         "Å², every removed vertex within {:.3g} Å of the result\n",
+                                         simplification.vertices_before, simplification.vertices_after,
+                                         simplification.mean_edge_before, simplification.mean_edge_after,
+                                         simplification.area_before, simplification.area_after,
+                                         simplification.max_vertex_distance);
               for (const auto& warning : molecule.report.warnings) std::cout << "  warning: " << warning << "\n";
               if (repair.method != "none")
                 std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "

@@ -633,6 +633,10 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
         {"carve_cavities", job.surface.carve_cavities},
         {"contour_minimum_fraction", job.surface.contour_minimum_fraction}}},
       {"keep_topology", job.keep_topology},
+      {"simplify",
+       {{"target_edge_length", job.simplify.target_edge_length},
+        {"max_error", job.simplify.max_error},
+        {"mesh_files", job.simplify_mesh_files}}},
   };
 }
 

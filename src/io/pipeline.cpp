@@ -284,10 +284,42 @@ std::string prepare_surface_component(const MolecularSurface& surface, std::size
   MapJobOptions named = options;
   named.prepare.source_name = chosen == 0 ? name : fmt::format("{}, component {}", name, chosen);
   named.prepare.component = kComponentRefuse;
+  Mesh component = extract_component(surface.mesh, surface.components[chosen]);
+  if (options.simplify.target_edge_length > 0) {
+    const auto simplify_start = std::chrono::steady_clock::now();
+    component = simplify_surface(component, options.simplify, &result.simplification);
+    result.simplified = true;
+    result.simplify_seconds = seconds_since(simplify_start);
+  }
   const auto prepare_start = std::chrono::steady_clock::now();
-  result.prepared = prepare_mesh(extract_component(surface.mesh, surface.components[chosen]), named.prepare);
+  result.prepared = prepare_mesh(component, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
   return named.prepare.source_name;
+}
+
+// Simplifies a prepared mesh file's mesh (options.simplify), keeping user-given poles; the prepare report's
+// vertex correspondences then refer to the simplified mesh.
+void simplify_prepared_mesh(MapJobResult& result, const MapJobOptions& options, const std::string& name) {
+  if (!(options.simplify.target_edge_length > 0)) return;
+  SimplifyOptions simplify = options.simplify;
+  if (options.map.poles) {
+    const auto poles = *map_options_for(result.prepared, options, name).poles;
+    simplify.kept_vertices.insert(simplify.kept_vertices.end(), {poles.first, poles.second});
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto& prepared = result.prepared;
+  prepared.mesh = simplify_surface(prepared.mesh, simplify, &result.simplification);
+  const auto& kept = result.simplification.kept_vertex;
+  std::vector<std::int32_t> new_index(prepared.report.original_vertex.size(), -1), original(kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    new_index[static_cast<std::size_t>(kept[i])] = static_cast<std::int32_t>(i);
+    original[i] = prepared.report.original_vertex[static_cast<std::size_t>(kept[i])];
+  }
+  prepared.report.original_vertex = std::move(original);
+  for (auto& v : prepared.report.vertex_of_input)
+    if (v >= 0) v = new_index[static_cast<std::size_t>(v)];
+  result.simplified = true;
+  result.simplify_seconds = seconds_since(start);
 }
 
 // Everything before the map: read (and for structures, the surface and its repair), then prepare.
@@ -316,6 +348,7 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
   const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(soup, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
+  if (options.simplify_mesh_files) simplify_prepared_mesh(result, options, named.prepare.source_name);
   return named.prepare.source_name;
 }
 
@@ -371,6 +404,7 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
   const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(mesh, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
+  if (options.simplify_mesh_files) simplify_prepared_mesh(result, named, name);
   map_and_measure(result, options, name);
   return result;
 }
@@ -403,6 +437,29 @@ nlohmann::json components_json(const std::vector<SurfaceComponentReport>& compon
   return list;
 }
 
+nlohmann::json simplification_json(const MapJobResult& result, const MapJobOptions& options) {
+  if (!result.simplified) return nullptr;
+  const auto& r = result.simplification;
+  return {{"target_edge_length", options.simplify.target_edge_length},
+          {"max_error", options.simplify.max_error},
+          {"min_angle_degrees", options.simplify.min_angle_degrees},
+          {"max_normal_change_degrees", options.simplify.max_normal_change_degrees},
+          {"vertices_before", r.vertices_before},
+          {"vertices_after", r.vertices_after},
+          {"triangles_before", r.triangles_before},
+          {"triangles_after", r.triangles_after},
+          {"collapses", r.collapses},
+          {"flips", r.flips},
+          {"rounds", r.rounds},
+          {"area_before", r.area_before},
+          {"area_after", r.area_after},
+          {"mean_edge_before", r.mean_edge_before},
+          {"mean_edge_after", r.mean_edge_after},
+          {"min_angle_before_degrees", r.min_angle_before_degrees},
+          {"min_angle_after_degrees", r.min_angle_after_degrees},
+          {"max_vertex_distance", r.max_vertex_distance}};
+}
+
 }  // namespace
 
 nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& options) {
@@ -418,6 +475,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
     for (const auto& t : result.surface_timings) parts[t.stage] = t.seconds;
     timings["surface_stages"] = parts;
   }
+  if (result.simplified) timings["simplify"] = result.simplify_seconds;
   timings["prepare"] = result.prepare_seconds;
   for (const auto& t : map.timings) timings[t.stage] = t.seconds;
   timings["metrics"] = result.metrics_seconds;
@@ -462,6 +520,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
                             {"components", components_json(result.components)},
                             {"component_mapped", result.component_index}}
            : nlohmann::json(nullptr)},
+      {"simplification", simplification_json(result, options)},
       {"mesh",
        {{"vertices", result.prepared.mesh.vertex_count()},
         {"triangles", result.prepared.mesh.triangle_count()},
@@ -520,7 +579,8 @@ std::string summary_text(const MapJobResult& result) {
   const auto& map = result.map;
   const auto& c = map.certificate;
   const auto& m = result.metrics;
-  double total_seconds = result.read_seconds + result.surface_seconds + result.prepare_seconds + result.metrics_seconds;
+  double total_seconds = result.read_seconds + result.surface_seconds + result.simplify_seconds +
+                         result.prepare_seconds + result.metrics_seconds;
   for (const auto& t : map.timings) total_seconds += t.seconds;
   std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
                                  result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
@@ -541,6 +601,14 @@ std::string summary_text(const MapJobResult& result) {
                           result.topology.area_after, 100 * (result.topology.area_after / result.topology.area_before - 1));
     }
     for (const auto& warning : result.structure.warnings) text += fmt::format("  warning: {}\n", warning);
+  }
+  if (result.simplified) {
+    const auto& r = result.simplification;
+    text += fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g}, smallest angle {:.1f}° -> {:.1f}°), "
+                        "area {:+.2f}%, every removed vertex within {:.3g} of the result\n",
+                        r.vertices_before, r.vertices_after, r.mean_edge_before, r.mean_edge_after,
+                        r.min_angle_before_degrees, r.min_angle_after_degrees,
+                        r.area_before > 0 ? 100 * (r.area_after / r.area_before - 1) : 0.0, r.max_vertex_distance);
   }
   text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n", map.method,
                       map.north, map.south, map.pole_graph_distance, map.split_edges.size(), map.solver_used);

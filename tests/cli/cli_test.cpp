@@ -197,7 +197,10 @@ TEST_F(Cli, ComponentsOfAMolecularSurface) {
     const auto component = nlohmann::json::parse(slurp(folder_ / "all" / ("component-" + std::to_string(k)) / "report.json"));
     EXPECT_EQ(component["structure"]["component_mapped"], k);
     EXPECT_TRUE(component["certificate"]["certified"]);
-    EXPECT_EQ(component["mesh"]["triangles"], components[k]["triangles"]);
+    // Each component is simplified before it is mapped (the default --mesh-edge 1).
+    EXPECT_EQ(component["simplification"]["triangles_before"], components[k]["triangles"]);
+    EXPECT_EQ(component["mesh"]["triangles"], component["simplification"]["triangles_after"]);
+    EXPECT_LT(component["mesh"]["triangles"].get<int>(), components[k]["triangles"].get<int>());
   }
   const auto piece = run_cli("map " + input.string() + " -o " + (folder_ / "piece").string() + " --component 1");
   ASSERT_EQ(piece.exit_code, 0) << piece.output;

@@ -1,0 +1,546 @@
+#include "spheremap/topology/simplify.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+
+#include "spheremap/geometry/vec.hpp"
+
+namespace spheremap {
+namespace {
+
+constexpr std::int32_t kDead = -1;
+// A triangle with a corner below 10 degrees (cosine above this) has a normal that a small move of one
+// vertex turns a lot: a collapse is then judged against its fan's vector area, not against that normal.
+constexpr double kSliverCosine = 0.98480775301220802;
+
+inline int next_corner(int k) { return k == 2 ? 0 : k + 1; }
+inline int previous_corner(int k) { return k == 0 ? 2 : k - 1; }
+
+// Distance from p to the triangle abc (closest point by region, Ericson, Real-Time Collision Detection 5.1.5).
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return norm(ap);
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return norm(bp);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return norm(p - (a + (d1 / (d1 - d3)) * ab));
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return norm(cp);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return norm(p - (a + (d2 / (d2 - d6)) * ac));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return norm(p - (b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b)));
+  const double denominator = 1 / (va + vb + vc);
+  return norm(p - (a + (vb * denominator) * ab + (vc * denominator) * ac));
+}
+
+// Distance between the segments pq and rs (Ericson 5.1.9).
+double segment_distance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+  const Vec3 d1 = q - p, d2 = s - r, w = p - r;
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, w);
+  double u = 0, v = 0;
+  if (a <= 0 && e <= 0) return norm(w);
+  if (a <= 0) {
+    v = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = dot(d1, w);
+    if (e <= 0) {
+      u = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = dot(d1, d2), denominator = a * e - b * b;
+      u = denominator > 0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
+      v = (b * u + f) / e;
+      if (v < 0) v = 0, u = std::clamp(-c / a, 0.0, 1.0);
+      else if (v > 1) v = 1, u = std::clamp((b - c) / a, 0.0, 1.0);
+    }
+  }
+  return norm((p + u * d1) - (r + v * d2));
+}
+
+// The largest cosine of the three corner angles (the cosine of the smallest angle, which faces the
+// shortest side; law of cosines): larger is worse. 1 for a degenerate triangle.
+double worst_corner_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double ab = squared_distance(a, b), bc = squared_distance(b, c), ca = squared_distance(c, a);
+  const double shortest = std::min({ab, bc, ca});
+  const double product = ab * bc * ca / shortest;  // the other two sides, squared and multiplied
+  if (!(product > 0)) return 1;
+  return (ab + bc + ca - 2 * shortest) / (2 * std::sqrt(product));
+}
+
+// A closed oriented triangle 2-manifold as a corner table: half-edge h = 3t + k runs from tri[t][k] to
+// tri[t][k+1]; opp[h] is the half-edge running the other way in the neighbouring triangle.
+class Surface {
+ public:
+  Surface(const Mesh& mesh, const SimplifyOptions& options)
+      : p_(mesh.positions), tri_(mesh.triangles), options_(options) {
+    const auto vertices = static_cast<std::int32_t>(p_.size());
+    const auto half_edges = static_cast<std::int64_t>(tri_.size()) * 3;
+    if (half_edges >= std::numeric_limits<std::int32_t>::max())
+      throw std::invalid_argument("simplify_surface: more than 2^31 half-edges");
+    for (const auto& t : tri_)
+      for (const auto v : t)
+        if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a triangle index is out of range");
+    // Pair half-edges: grouped by their smaller vertex (counting sort), then matched within the group.
+    std::vector<std::int32_t> start(static_cast<std::size_t>(vertices) + 1, 0);
+    for (std::int32_t h = 0; h < half_edges; ++h) ++start[static_cast<std::size_t>(std::min(from(h), to(h))) + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<std::int32_t> grouped(static_cast<std::size_t>(half_edges));
+    {
+      std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+      for (std::int32_t h = 0; h < half_edges; ++h) grouped[static_cast<std::size_t>(fill[std::min(from(h), to(h))]++)] = h;
+    }
+    opp_.assign(static_cast<std::size_t>(half_edges), kDead);
+    for (std::int32_t v = 0; v < vertices; ++v) {
+      for (std::int32_t i = start[v]; i < start[v + 1]; ++i) {
+        const std::int32_t h = grouped[i];
+        if (opp_[h] != kDead) continue;
+        const std::int32_t other = std::max(from(h), to(h));
+        std::int32_t match = kDead, same = 0;
+        for (std::int32_t j = start[v]; j < start[v + 1]; ++j) {
+          const std::int32_t g = grouped[j];
+          if (g == h || std::max(from(g), to(g)) != other) continue;
+          ++same;
+          if (from(g) == to(h) && to(g) == from(h)) match = g;
+        }
+        if (same != 1 || match == kDead || opp_[match] != kDead)
+          throw std::invalid_argument(
+              "simplify_surface: the mesh is not a closed, consistently oriented 2-manifold (an edge is not shared by "
+              "exactly two triangles in opposite directions)");
+        opp_[h] = match, opp_[match] = h;
+      }
+    }
+    // One leaving half-edge per vertex; each vertex's triangles must form one fan.
+    out_.assign(static_cast<std::size_t>(vertices), kDead);
+    std::vector<std::int32_t> corners(static_cast<std::size_t>(vertices), 0);
+    for (std::int32_t h = 0; h < half_edges; ++h) out_[from(h)] = h, ++corners[from(h)];
+    for (std::int32_t v = 0; v < vertices; ++v) {
+      if (out_[v] == kDead) throw std::invalid_argument("simplify_surface: a vertex belongs to no triangle");
+      if (degree(v) != corners[v])
+        throw std::invalid_argument("simplify_surface: a vertex's triangles form several fans (a pinched vertex)");
+    }
+    // Components (by shared vertices) and their vertex counts: none may shrink below 4 (a tetrahedron).
+    component_.resize(static_cast<std::size_t>(vertices));
+    std::iota(component_.begin(), component_.end(), 0);
+    auto root = [&](std::int32_t v) {
+      while (component_[v] != v) v = component_[v] = component_[component_[v]];
+      return v;
+    };
+    for (const auto& t : tri_)
+      for (int k = 1; k < 3; ++k) {
+        const auto a = root(t[0]), b = root(t[k]);
+        if (a != b) component_[std::max(a, b)] = std::min(a, b);
+      }
+    component_size_.assign(static_cast<std::size_t>(vertices), 0);
+    for (std::int32_t v = 0; v < vertices; ++v) component_[v] = root(v), ++component_size_[component_[v]];
+    merged_into_.assign(static_cast<std::size_t>(vertices), kDead);
+    kept_.assign(static_cast<std::size_t>(vertices), false);
+    for (const auto v : options.kept_vertices) {
+      if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a kept vertex does not exist");
+      kept_[v] = true;
+    }
+    mark_.assign(static_cast<std::size_t>(vertices), 0);
+    cos_min_angle_ = std::cos(options.min_angle_degrees * std::numbers::pi / 180);
+    const double cos_normal_change = std::cos(options.max_normal_change_degrees * std::numbers::pi / 180);
+    cos_normal_change_squared_ = cos_normal_change * cos_normal_change;
+    const double high = options.target_edge_length * 4 / 3;
+    longest_squared_ = high * high;
+  }
+
+  [[nodiscard]] std::int32_t from(std::int32_t h) const { return tri_[h / 3][h % 3]; }
+  [[nodiscard]] std::int32_t to(std::int32_t h) const { return tri_[h / 3][next_corner(h % 3)]; }
+  // The third vertex of h's triangle.
+  [[nodiscard]] std::int32_t apex(std::int32_t h) const { return tri_[h / 3][previous_corner(h % 3)]; }
+  // The next half-edge leaving from(h): the one that runs back along h's triangle's previous edge.
+  [[nodiscard]] std::int32_t rotate(std::int32_t h) const { return opp_[3 * (h / 3) + previous_corner(h % 3)]; }
+
+  [[nodiscard]] std::int32_t degree(std::int32_t v) const {
+    std::int32_t count = 0, h = out_[v];
+    do ++count, h = rotate(h);
+    while (h != out_[v]);
+    return count;
+  }
+  [[nodiscard]] bool alive_vertex(std::int32_t v) const { return out_[v] != kDead; }
+  [[nodiscard]] bool alive_triangle(std::int32_t t) const { return tri_[t][0] != kDead; }
+
+  // The half-edge from u to v, or kDead when they are not adjacent.
+  [[nodiscard]] std::int32_t half_edge(std::int32_t u, std::int32_t v) const {
+    std::int32_t h = out_[u];
+    do {
+      if (to(h) == v) return h;
+      h = rotate(h);
+    } while (h != out_[u]);
+    return kDead;
+  }
+
+  // worst_corner_cosine of triangle t.
+  [[nodiscard]] double triangle_cosine(std::int32_t t) const {
+    return worst_corner_cosine(p_[tri_[t][0]], p_[tri_[t][1]], p_[tri_[t][2]]);
+  }
+
+  // normal . reference >= cos(max turn) |normal| |reference|, without square roots (the turn is below 90
+  // degrees, so both sides are positive when it holds).
+  [[nodiscard]] bool faces_within_turn(const Vec3& normal, const Vec3& reference, double reference_squared) const {
+    const double along = dot(normal, reference);
+    return along > 0 && along * along >= cos_normal_change_squared_ * dot(normal, normal) * reference_squared;
+  }
+
+  // The neighbours of v in rotation order (triangles (v, ring[i], ring[i + 1])), with their positions;
+  // returns the half-edge from v to `target` (kDead if they are not adjacent).
+  std::int32_t gather_ring(std::int32_t v, std::int32_t target, std::vector<std::int32_t>& ring,
+                           std::vector<Vec3>& points) const {
+    ring.clear(), points.clear();
+    std::int32_t g = out_[v], found = kDead;
+    do {
+      const std::int32_t w = to(g);
+      if (w == target) found = g;
+      ring.push_back(w), points.push_back(p_[w]);
+      g = rotate(g);
+    } while (g != out_[v]);
+    return found;
+  }
+
+  // Checks merging u (at pu, neighbours `ring` at `points`) into its neighbour ring[j]. When allowed,
+  // returns true with the largest corner cosine of the triangles it makes (smaller is better) in *worst and
+  // the distance of u from them in *distance. The link condition and the degrees of the two apexes are
+  // the caller's (they do not depend on the direction).
+  bool collapse_allowed(const Vec3& pu, const std::vector<std::int32_t>& ring, const std::vector<Vec3>& points,
+                        std::size_t j, bool must_improve, double* worst, double* distance) {
+    const std::size_t n = ring.size();
+    const Vec3& pv = points[j];
+    const std::size_t before = (j + n - 1) % n, after = (j + 1) % n;
+    // The new edges (v to u's other neighbours) first: the cheapest test.
+    for (std::size_t i = 0; i < n; ++i)
+      if (i != j && i != before && i != after && squared_distance(pv, points[i]) > longest_squared_) return false;
+    // The vector area of u's fan depends only on its link polygon, so the new fan has the same: a new
+    // triangle must face within the allowed turn of it (a sliver's own normal says little, so it is not
+    // the reference).
+    Vec3 fan_area{0, 0, 0};
+    for (std::size_t i = 0; i < n; ++i) fan_area = fan_area + cross(points[i], points[i + 1 == n ? 0 : i + 1]);
+    const double fan_area_squared = dot(fan_area, fan_area);
+    double old_worst = -1, new_worst = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t next = i + 1 == n ? 0 : i + 1;
+      const Vec3 &p1 = points[i], &p2 = points[next];
+      if (i == j || next == j) {  // the two triangles that vanish
+        old_worst = std::max(old_worst, worst_corner_cosine(pu, p1, p2));
+        continue;
+      }
+      const Vec3 new_normal = cross(p1 - pv, p2 - pv);
+      const double old_cosine = worst_corner_cosine(pu, p1, p2);
+      old_worst = std::max(old_worst, old_cosine);
+      if (old_cosine < kSliverCosine) {
+        const Vec3 old_normal = cross(p1 - pu, p2 - pu);
+        if (!faces_within_turn(new_normal, old_normal, dot(old_normal, old_normal))) return false;
+      } else if (!faces_within_turn(new_normal, fan_area, fan_area_squared)) {
+        return false;
+      }
+      new_worst = std::max(new_worst, worst_corner_cosine(pv, p1, p2));
+    }
+    if (new_worst > std::max(old_worst, cos_min_angle_) || (must_improve && !(new_worst < old_worst))) return false;
+    double nearest = INFINITY;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t next = i + 1 == n ? 0 : i + 1;
+      if (i != j && next != j) nearest = std::min(nearest, point_triangle_distance(pu, pv, points[i], points[next]));
+    }
+    if (!(nearest <= options_.max_error)) return false;
+    *worst = new_worst, *distance = nearest;
+    return true;
+  }
+
+  // Collapses the edge ab in whichever allowed direction makes the better-shaped triangles (then the
+  // nearer). Returns false when neither is allowed or they are no longer adjacent.
+  // With `for_quality` (an edge no shorter than the collapse threshold, on a sliver) only while one of
+  // its two triangles is still a sliver, and only if the collapse raises the smallest angle around it.
+  bool try_collapse(std::int32_t a, std::int32_t b, bool for_quality) {
+    const std::int32_t ab = gather_ring(a, b, ring_a_, points_a_);
+    if (ab == kDead) return false;
+    if (for_quality && !(triangle_cosine(ab / 3) > cos_min_angle_ || triangle_cosine(opp_[ab] / 3) > cos_min_angle_))
+      return false;
+    if (component_size_[component_[a]] <= 4) return false;
+    // The apexes of the two triangles on ab each lose an edge: they need degree 4 or more.
+    if (degree(apex(ab)) < 4 || degree(apex(opp_[ab])) < 4) return false;
+    const std::int32_t ba = opp_[ab];
+    gather_ring(b, kDead, ring_b_, points_b_);
+    // Link condition: a and b have exactly the two apexes as common neighbours (with more than 4 vertices
+    // in the component this also rules out a shared link edge).
+    ++stamp_;
+    for (const auto w : ring_a_) mark_[w] = stamp_;
+    int common = 0;
+    for (const auto w : ring_b_) common += mark_[w] == stamp_;
+    if (common != 2) return false;
+    const std::size_t b_in_a = static_cast<std::size_t>(std::find(ring_a_.begin(), ring_a_.end(), b) - ring_a_.begin());
+    const std::size_t a_in_b = static_cast<std::size_t>(std::find(ring_b_.begin(), ring_b_.end(), a) - ring_b_.begin());
+    double worst_ab = 0, worst_ba = 0, distance_ab = 0, distance_ba = 0;
+    const bool remove_a =
+        !kept_[a] && collapse_allowed(p_[a], ring_a_, points_a_, b_in_a, for_quality, &worst_ab, &distance_ab);
+    const bool remove_b =
+        !kept_[b] && collapse_allowed(p_[b], ring_b_, points_b_, a_in_b, for_quality, &worst_ba, &distance_ba);
+    if (!remove_a && !remove_b) return false;
+    const bool a_goes =
+        remove_a && (!remove_b || worst_ab < worst_ba || (worst_ab == worst_ba && distance_ab <= distance_ba));
+    collapse(a_goes ? ab : ba);
+    return true;
+  }
+
+  // Merges from(h) into to(h): its two triangles go, the others get to(h) in its place.
+  void collapse(std::int32_t h) {
+    const std::int32_t u = from(h), v = to(h), back = opp_[h];
+    const std::int32_t t1 = h / 3, t2 = back / 3;
+    std::int32_t g = out_[u];
+    fan_.clear();
+    do fan_.push_back(g), g = rotate(g);
+    while (g != out_[u]);
+    // Glue the outer edges of the two vanishing triangles: (v, a) with (a, u) in t1, (u, b) with (b, v) in t2.
+    const std::int32_t va = 3 * t1 + next_corner(h % 3), au = 3 * t1 + previous_corner(h % 3);
+    const std::int32_t ub = 3 * t2 + next_corner(back % 3), bv = 3 * t2 + previous_corner(back % 3);
+    const std::int32_t x1 = opp_[va], y1 = opp_[au], x2 = opp_[ub], y2 = opp_[bv];
+    opp_[x1] = y1, opp_[y1] = x1, opp_[x2] = y2, opp_[y2] = x2;
+    for (const auto f : fan_) {
+      const std::int32_t t = f / 3;
+      if (t == t1 || t == t2) continue;
+      tri_[t][f % 3] = v;
+    }
+    // y1 now runs v -> a, x1 a -> v, x2 b -> v: valid leaving half-edges for v, a and b.
+    out_[v] = y1, out_[from(x1)] = x1, out_[from(x2)] = x2, out_[u] = kDead;
+    for (const auto t : {t1, t2}) tri_[t] = {kDead, kDead, kDead};
+    --component_size_[component_[u]];
+    merged_into_[u] = v;
+  }
+
+  // Flips the edge of h when that raises the smaller corner angle of its two triangles, keeps both
+  // normals within the allowed turn and the diagonals within max_error of each other, and creates no
+  // existing edge.
+  bool flip_if_better(std::int32_t h) {
+    const std::int32_t back = opp_[h];
+    const std::int32_t a = from(h), b = to(h), c = apex(h), d = apex(back);
+    if (c == d) return false;
+    const Vec3 &pa = p_[a], &pb = p_[b], &pc = p_[c], &pd = p_[d];
+    const double old_worst = std::max(worst_corner_cosine(pa, pb, pc), worst_corner_cosine(pb, pa, pd));
+    const double new_worst = std::max(worst_corner_cosine(pc, pa, pd), worst_corner_cosine(pd, pb, pc));
+    if (!(new_worst < old_worst - 1e-9)) return false;
+    if (degree(a) < 4 || degree(b) < 4 || half_edge(c, d) != kDead) return false;
+    // The quad's vector area is the same before and after: both new triangles must face within the
+    // allowed turn of it.
+    const Vec3 quad_area = cross(pb - pa, pc - pa) + cross(pa - pb, pd - pb);
+    const double quad_area_squared = dot(quad_area, quad_area);
+    if (!faces_within_turn(cross(pa - pc, pd - pc), quad_area, quad_area_squared) ||
+        !faces_within_turn(cross(pb - pd, pc - pd), quad_area, quad_area_squared))
+      return false;
+    if (!(segment_distance(pa, pb, pc, pd) <= options_.max_error)) return false;
+    // t1 = (a, b, c) and t2 = (b, a, d) become (c, a, d) and (d, b, c).
+    const std::int32_t t1 = h / 3, t2 = back / 3;
+    const std::int32_t ca = opp_[3 * t1 + previous_corner(h % 3)], bc = opp_[3 * t1 + next_corner(h % 3)];
+    const std::int32_t ad = opp_[3 * t2 + next_corner(back % 3)], db = opp_[3 * t2 + previous_corner(back % 3)];
+    tri_[t1] = {c, a, d};
+    tri_[t2] = {d, b, c};
+    auto link = [&](std::int32_t x, std::int32_t y) { opp_[x] = y, opp_[y] = x; };
+    link(3 * t1 + 0, ca), link(3 * t1 + 1, ad), link(3 * t1 + 2, 3 * t2 + 2);
+    link(3 * t2 + 0, db), link(3 * t2 + 1, bc);
+    out_[a] = 3 * t1 + 1, out_[b] = 3 * t2 + 1, out_[c] = 3 * t1 + 0, out_[d] = 3 * t2 + 0;
+    return true;
+  }
+
+  // One round: every edge shorter than 4/5 of the target, shortest first (ties by vertex pair),
+  // collapsed in whichever allowed direction makes the better-shaped triangles. Returns the number of
+  // collapses.
+  std::int64_t collapse_round() {
+    const double low = options_.target_edge_length * 4 / 5, low_squared = low * low;
+    candidates_.clear();
+    for (std::int32_t t = 0; t < static_cast<std::int32_t>(tri_.size()); ++t) {
+      if (!alive_triangle(t)) continue;
+      // Every edge of a triangle with a corner below min_angle_degrees is a candidate too, whatever its
+      // length: a sliver whose short edges are long already (a vertex almost on the opposite edge, often
+      // of degree 3, which no flip can remove) goes only by a collapse.
+      const bool sliver = triangle_cosine(t) > cos_min_angle_;
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
+        const double squared_length = squared_distance(p_[a], p_[b]);
+        if ((a < b && squared_length < low_squared) || (sliver && squared_length >= low_squared))
+          candidates_.push_back({static_cast<float>(squared_length), std::min(a, b), std::max(a, b)});
+      }
+    }
+    // Shortest first, by classes of lengths within a factor 2^(1/4) of each other; within a class in
+    // triangle order, which keeps neighbouring candidates near each other in memory (a global sort by
+    // length visits the mesh at random and spends its time in cache misses).
+    constexpr int kClasses = 16;
+    auto length_class = [&](float squared_length) {
+      const double ratio = std::min(1.0, static_cast<double>(squared_length) / low_squared);
+      return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
+    };
+    {
+      std::array<std::size_t, kClasses + 1> start{};
+      for (const auto& c : candidates_) ++start[static_cast<std::size_t>(length_class(c.squared_length)) + 1];
+      for (int k = 0; k < kClasses; ++k) start[k + 1] += start[k];
+      sorted_.resize(candidates_.size());
+      for (const auto& c : candidates_) sorted_[start[static_cast<std::size_t>(length_class(c.squared_length))]++] = c;
+      candidates_.swap(sorted_);
+    }
+    std::int64_t collapses = 0;
+    for (const auto& candidate : candidates_) {
+      if (!alive_vertex(candidate.a) || !alive_vertex(candidate.b)) continue;
+      const bool short_edge = squared_distance(p_[candidate.a], p_[candidate.b]) < low_squared;
+      collapses += try_collapse(candidate.a, candidate.b, !short_edge);
+    }
+    return collapses;
+  }
+
+  // One pass of angle-improving flips over every edge, in triangle order. Returns the number of flips.
+  std::int64_t flip_round() {
+    std::int64_t flips = 0;
+    for (std::int32_t t = 0; t < static_cast<std::int32_t>(tri_.size()); ++t) {
+      if (!alive_triangle(t)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t h = 3 * t + k;
+        if (from(h) < to(h) && flip_if_better(h)) ++flips;
+      }
+    }
+    return flips;
+  }
+
+  // The upper bound of SimplifyReport::max_vertex_distance: each removed vertex is measured against
+  // the triangles around the vertex it was merged into (transitively), then around each vertex nearer to
+  // it on a walk from there (to the nearest neighbour, while one is nearer).
+  [[nodiscard]] double removed_vertex_distance() {
+    double largest = 0;
+    for (std::int32_t x = 0; x < static_cast<std::int32_t>(out_.size()); ++x) {
+      if (alive_vertex(x)) continue;
+      std::int32_t r = merged_into_[x];
+      while (!alive_vertex(r)) r = merged_into_[r];
+      merged_into_[x] = r;  // later vertices merged into x find r at once
+      const Vec3& point = p_[x];
+      double nearest = INFINITY, closest_vertex = squared_distance(point, p_[r]);
+      for (int steps = 0; steps < 16; ++steps) {
+        std::int32_t g = out_[r], next = kDead;
+        do {
+          const std::int32_t w = to(g);
+          nearest = std::min(nearest, point_triangle_distance(point, p_[r], p_[w], p_[apex(g)]));
+          const double d = squared_distance(point, p_[w]);
+          if (d < closest_vertex) closest_vertex = d, next = w;
+          g = rotate(g);
+        } while (g != out_[r]);
+        if (next == kDead) break;
+        r = next;
+      }
+      largest = std::max(largest, nearest);
+    }
+    return largest;
+  }
+
+  [[nodiscard]] const std::vector<Triangle>& triangles() const { return tri_; }
+  [[nodiscard]] std::int64_t alive_vertices() const {
+    return std::count_if(out_.begin(), out_.end(), [](std::int32_t h) { return h != kDead; });
+  }
+
+ private:
+  struct Candidate {
+    float squared_length;
+    std::int32_t a, b;
+  };
+  const std::vector<Vec3>& p_;
+  std::vector<Triangle> tri_;
+  SimplifyOptions options_;
+  std::vector<std::int32_t> opp_, out_, component_, mark_, fan_, merged_into_;
+  std::vector<std::int64_t> component_size_;
+  std::vector<bool> kept_;
+  std::vector<Candidate> candidates_, sorted_;
+  std::vector<std::int32_t> ring_a_, ring_b_;
+  std::vector<Vec3> points_a_, points_b_;
+  std::int32_t stamp_ = 0;
+  double cos_min_angle_ = 1, cos_normal_change_squared_ = 1, longest_squared_ = INFINITY;
+};
+
+struct ShapeFigures {
+  double area = 0, mean_edge = 0, min_angle_degrees = 0;
+};
+
+ShapeFigures shape_figures(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  ShapeFigures figures;
+  double worst = -1, edges = 0;
+  std::int64_t alive = 0;
+  for (const auto& t : triangles) {
+    if (t[0] == kDead) continue;
+    const Vec3 &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
+    worst = std::max(worst, worst_corner_cosine(a, b, c));
+    figures.area += triangle_area(a, b, c);
+    edges += norm(b - a) + norm(c - b) + norm(a - c);
+    ++alive;
+  }
+  if (alive == 0) return figures;
+  figures.mean_edge = edges / static_cast<double>(3 * alive);
+  figures.min_angle_degrees = std::acos(std::clamp(worst, -1.0, 1.0)) * 180 / std::numbers::pi;
+  return figures;
+}
+
+}  // namespace
+
+Mesh simplify_surface(const Mesh& mesh, const SimplifyOptions& options, SimplifyReport* report) {
+  for (const double value : {options.target_edge_length, options.max_error, options.min_angle_degrees,
+                             options.max_normal_change_degrees})
+    if (!(value >= 0) || !std::isfinite(value))
+      throw std::invalid_argument("simplify_surface: options must be finite and not negative");
+  if (!(options.max_normal_change_degrees < 90))
+    throw std::invalid_argument("simplify_surface: max_normal_change_degrees must be below 90");
+  if (options.max_rounds < 0) throw std::invalid_argument("simplify_surface: max_rounds must not be negative");
+  SimplifyReport local;
+  SimplifyReport& r = report ? *report : local;
+  r = SimplifyReport{};
+  r.vertices_before = static_cast<std::int64_t>(mesh.vertex_count());
+  r.triangles_before = static_cast<std::int64_t>(mesh.triangle_count());
+  const ShapeFigures before = shape_figures(mesh.positions, mesh.triangles);
+  r.area_before = before.area, r.mean_edge_before = before.mean_edge, r.min_angle_before_degrees = before.min_angle_degrees;
+  Surface surface(mesh, options);
+  if (options.target_edge_length > 0) {
+    std::int64_t left = r.vertices_before;
+    for (int round = 0; round < options.max_rounds; ++round) {
+      const std::int64_t collapses = surface.collapse_round();
+      r.collapses += collapses;
+      left -= collapses;
+      r.flips += surface.flip_round();
+      ++r.rounds;
+      if (collapses * 200 < left) break;
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+      const std::int64_t flips = surface.flip_round();
+      r.flips += flips;
+      if (flips == 0) break;
+    }
+  }
+  r.max_vertex_distance = options.measure_distance ? surface.removed_vertex_distance() : -1;
+  // Survivors in input order, triangles in input order.
+  const auto& triangles = surface.triangles();
+  std::vector<std::int32_t> new_index(mesh.vertex_count(), kDead);
+  for (const auto& t : triangles)
+    if (t[0] != kDead)
+      for (const auto v : t) new_index[v] = 0;
+  for (std::int32_t v = 0; v < static_cast<std::int32_t>(new_index.size()); ++v)
+    if (new_index[v] == 0) new_index[v] = static_cast<std::int32_t>(r.kept_vertex.size()), r.kept_vertex.push_back(v);
+  Mesh out;
+  out.positions.reserve(r.kept_vertex.size());
+  for (const auto v : r.kept_vertex) out.positions.push_back(mesh.positions[v]);
+  for (const auto& t : triangles)
+    if (t[0] != kDead) out.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+  auto pick = [&](const auto& values) {
+    std::remove_cvref_t<decltype(values)> kept;
+    kept.reserve(r.kept_vertex.size());
+    for (const auto v : r.kept_vertex) kept.push_back(values[static_cast<std::size_t>(v)]);
+    return kept;
+  };
+  for (const auto& [name, values] : mesh.real_attributes) out.real_attributes[name] = pick(values);
+  for (const auto& [name, values] : mesh.integer_attributes) out.integer_attributes[name] = pick(values);
+  for (const auto& [name, text] : mesh.text_attributes) out.text_attributes[name] = {text.dictionary, pick(text.codes)};
+  r.vertices_after = static_cast<std::int64_t>(out.vertex_count());
+  r.triangles_after = static_cast<std::int64_t>(out.triangle_count());
+  const ShapeFigures after = shape_figures(out.positions, out.triangles);
+  r.area_after = after.area, r.mean_edge_after = after.mean_edge, r.min_angle_after_degrees = after.min_angle_degrees;
+  return out;
+}
+
+}  // namespace spheremap
