@@ -6,7 +6,9 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <exception>
 #include <stdexcept>
+#include <thread>
 
 #include "spheremap/geometry/vec.hpp"
 
@@ -79,8 +81,21 @@ double worst_corner_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
 // tri[t][k+1]; opp[h] is the half-edge running the other way in the neighbouring triangle.
 class Surface {
  public:
-  Surface(const Mesh& mesh, const SimplifyOptions& options)
-      : p_(mesh.positions), tri_(mesh.triangles), options_(options) {
+  struct Candidate {
+    float squared_length;
+    std::int32_t a, b;
+  };
+  // Scratch space of one thread, and what it did.
+  struct Workspace {
+    std::vector<std::int32_t> ring_a, ring_b, fan;
+    std::vector<Vec3> points_a, points_b;
+    std::vector<Candidate> deferred;
+    std::vector<std::int32_t> removed;  // vertices collapsed, not yet taken off their component's size
+    std::vector<std::int64_t> removed_in;  // per component (by root): collapses in this zone this round
+  };
+
+  Surface(const Mesh& mesh, const SimplifyOptions& options, int threads)
+      : p_(mesh.positions), tri_(mesh.triangles), options_(options), threads_(threads) {
     const auto vertices = static_cast<std::int32_t>(p_.size());
     const auto half_edges = static_cast<std::int64_t>(tri_.size()) * 3;
     if (half_edges >= std::numeric_limits<std::int32_t>::max())
@@ -146,7 +161,6 @@ class Surface {
       if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a kept vertex does not exist");
       kept_[v] = true;
     }
-    mark_.assign(static_cast<std::size_t>(vertices), 0);
     cos_min_angle_ = std::cos(options.min_angle_degrees * std::numbers::pi / 180);
     const double cos_normal_change = std::cos(options.max_normal_change_degrees * std::numbers::pi / 180);
     cos_normal_change_squared_ = cos_normal_change * cos_normal_change;
@@ -255,55 +269,68 @@ class Surface {
     return true;
   }
 
+  enum class Outcome { kCollapsed, kRefused, kDeferred };
+
   // Collapses the edge ab in whichever allowed direction makes the better-shaped triangles (then the
-  // nearer). Returns false when neither is allowed or they are no longer adjacent.
+  // nearer). Refused when neither is allowed or a and b are no longer adjacent.
   // With `for_quality` (an edge no shorter than the collapse threshold, on a sliver) only while one of
   // its two triangles is still a sliver, and only if the collapse raises the smallest angle around it.
-  bool try_collapse(std::int32_t a, std::int32_t b, bool for_quality) {
-    const std::int32_t ab = gather_ring(a, b, ring_a_, points_a_);
-    if (ab == kDead) return false;
+  // With zone >= 0 (a parallel pass) a collapse that would read or change anything outside the zone, or
+  // could shrink a component to a tetrahedron, is deferred to the serial pass instead.
+  Outcome try_collapse(std::int32_t a, std::int32_t b, bool for_quality, Workspace& w, int zone) {
+    auto outside_zone = [&](const std::vector<std::int32_t>& ring) {
+      return zone >= 0 && std::any_of(ring.begin(), ring.end(), [&](std::int32_t x) { return zone_[x] != zone; });
+    };
+    const std::int32_t ab = gather_ring(a, b, w.ring_a, w.points_a);
+    if (ab == kDead) return Outcome::kRefused;
+    if (outside_zone(w.ring_a)) return Outcome::kDeferred;
     if (for_quality && !(triangle_cosine(ab / 3) > cos_min_angle_ || triangle_cosine(opp_[ab] / 3) > cos_min_angle_))
-      return false;
-    if (component_size_[component_[a]] <= 4) return false;
+      return Outcome::kRefused;
+    const std::int32_t component = component_[a];
+    if (zone >= 0 && w.removed_in[static_cast<std::size_t>(component)] >= zone_budget_[static_cast<std::size_t>(component)])
+      return Outcome::kDeferred;
+    if (component_size_[component_[a]] <= 4) return Outcome::kRefused;
     // The apexes of the two triangles on ab each lose an edge: they need degree 4 or more.
-    if (degree(apex(ab)) < 4 || degree(apex(opp_[ab])) < 4) return false;
+    if (degree(apex(ab)) < 4 || degree(apex(opp_[ab])) < 4) return Outcome::kRefused;
     const std::int32_t ba = opp_[ab];
-    gather_ring(b, kDead, ring_b_, points_b_);
+    gather_ring(b, kDead, w.ring_b, w.points_b);
+    if (outside_zone(w.ring_b)) return Outcome::kDeferred;
     // Link condition: a and b have exactly the two apexes as common neighbours (with more than 4 vertices
     // in the component this also rules out a shared link edge).
-    ++stamp_;
-    for (const auto w : ring_a_) mark_[w] = stamp_;
     int common = 0;
-    for (const auto w : ring_b_) common += mark_[w] == stamp_;
-    if (common != 2) return false;
-    const std::size_t b_in_a = static_cast<std::size_t>(std::find(ring_a_.begin(), ring_a_.end(), b) - ring_a_.begin());
-    const std::size_t a_in_b = static_cast<std::size_t>(std::find(ring_b_.begin(), ring_b_.end(), a) - ring_b_.begin());
+    for (const auto x : w.ring_a) common += static_cast<int>(std::count(w.ring_b.begin(), w.ring_b.end(), x));
+    if (common != 2) return Outcome::kRefused;
+    const auto b_in_a = static_cast<std::size_t>(std::find(w.ring_a.begin(), w.ring_a.end(), b) - w.ring_a.begin());
+    const auto a_in_b = static_cast<std::size_t>(std::find(w.ring_b.begin(), w.ring_b.end(), a) - w.ring_b.begin());
     double worst_ab = 0, worst_ba = 0, distance_ab = 0, distance_ba = 0;
     const bool remove_a =
-        !kept_[a] && collapse_allowed(p_[a], ring_a_, points_a_, b_in_a, for_quality, &worst_ab, &distance_ab);
+        !kept_[a] && collapse_allowed(p_[a], w.ring_a, w.points_a, b_in_a, for_quality, &worst_ab, &distance_ab);
     const bool remove_b =
-        !kept_[b] && collapse_allowed(p_[b], ring_b_, points_b_, a_in_b, for_quality, &worst_ba, &distance_ba);
-    if (!remove_a && !remove_b) return false;
+        !kept_[b] && collapse_allowed(p_[b], w.ring_b, w.points_b, a_in_b, for_quality, &worst_ba, &distance_ba);
+    if (!remove_a && !remove_b) return Outcome::kRefused;
     const bool a_goes =
         remove_a && (!remove_b || worst_ab < worst_ba || (worst_ab == worst_ba && distance_ab <= distance_ba));
-    collapse(a_goes ? ab : ba);
-    return true;
+    collapse(a_goes ? ab : ba, w);
+    if (zone >= 0) ++w.removed_in[static_cast<std::size_t>(component)];
+    return Outcome::kCollapsed;
   }
 
   // Merges from(h) into to(h): its two triangles go, the others get to(h) in its place.
-  void collapse(std::int32_t h) {
+  // Component sizes are the caller's (see Workspace::removed).
+  void collapse(std::int32_t h, Workspace& w) {
     const std::int32_t u = from(h), v = to(h), back = opp_[h];
     const std::int32_t t1 = h / 3, t2 = back / 3;
     std::int32_t g = out_[u];
-    fan_.clear();
-    do fan_.push_back(g), g = rotate(g);
+    auto& fan = w.fan;
+    fan.clear();
+    do fan.push_back(g), g = rotate(g);
     while (g != out_[u]);
     // Glue the outer edges of the two vanishing triangles: (v, a) with (a, u) in t1, (u, b) with (b, v) in t2.
     const std::int32_t va = 3 * t1 + next_corner(h % 3), au = 3 * t1 + previous_corner(h % 3);
     const std::int32_t ub = 3 * t2 + next_corner(back % 3), bv = 3 * t2 + previous_corner(back % 3);
     const std::int32_t x1 = opp_[va], y1 = opp_[au], x2 = opp_[ub], y2 = opp_[bv];
     opp_[x1] = y1, opp_[y1] = x1, opp_[x2] = y2, opp_[y2] = x2;
-    for (const auto f : fan_) {
+    for (const auto f : fan) {
       const std::int32_t t = f / 3;
       if (t == t1 || t == t2) continue;
       tri_[t][f % 3] = v;
@@ -311,7 +338,7 @@ class Surface {
     // y1 now runs v -> a, x1 a -> v, x2 b -> v: valid leaving half-edges for v, a and b.
     out_[v] = y1, out_[from(x1)] = x1, out_[from(x2)] = x2, out_[u] = kDead;
     for (const auto t : {t1, t2}) tri_[t] = {kDead, kDead, kDead};
-    --component_size_[component_[u]];
+    w.removed.push_back(u);
     merged_into_[u] = v;
   }
 
@@ -352,6 +379,7 @@ class Surface {
   // collapsed in whichever allowed direction makes the better-shaped triangles. Returns the number of
   // collapses.
   std::int64_t collapse_round() {
+    constexpr int kClasses = 16;
     const double low = options_.target_edge_length * 4 / 5, low_squared = low * low;
     candidates_.clear();
     for (std::int32_t t = 0; t < static_cast<std::int32_t>(tri_.size()); ++t) {
@@ -370,7 +398,6 @@ class Surface {
     // Shortest first, by classes of lengths within a factor 2^(1/4) of each other; within a class in
     // triangle order, which keeps neighbouring candidates near each other in memory (a global sort by
     // length visits the mesh at random and spends its time in cache misses).
-    constexpr int kClasses = 16;
     auto length_class = [&](float squared_length) {
       const double ratio = std::min(1.0, static_cast<double>(squared_length) / low_squared);
       return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
@@ -383,13 +410,82 @@ class Surface {
       for (const auto& c : candidates_) sorted_[start[static_cast<std::size_t>(length_class(c.squared_length))]++] = c;
       candidates_.swap(sorted_);
     }
+    // Two zones, split at the median x of the vertices, are worked on at once (each by its own thread
+    // when there are two); whatever would touch both waits for a serial pass afterwards. Each zone's
+    // work reads and writes only its own vertices and the triangles all of whose corners are in it, so
+    // the result is the same in whatever order, or on however many threads, the zones run.
+    assign_zones();
+    std::array<Workspace, 2> zone_work;
+    for (auto& w : zone_work) w.removed_in.assign(component_size_.size(), 0);
+    auto run_zone = [&](int zone) {
+      auto& w = zone_work[static_cast<std::size_t>(zone)];
+      for (const auto& c : candidates_) {
+        if (zone_[c.a] != zone) continue;
+        if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
+        if (zone_[c.b] != zone) {
+          w.deferred.push_back(c);
+          continue;
+        }
+        const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
+        if (try_collapse(c.a, c.b, !short_edge, w, zone) == Outcome::kDeferred) w.deferred.push_back(c);
+      }
+    };
+    if (threads_ > 1) {
+      std::exception_ptr error;
+      std::thread second([&] {
+        try {
+          run_zone(1);
+        } catch (...) {
+          error = std::current_exception();
+        }
+      });
+      run_zone(0);
+      second.join();
+      if (error) std::rethrow_exception(error);
+    } else {
+      run_zone(0);
+      run_zone(1);
+    }
     std::int64_t collapses = 0;
-    for (const auto& candidate : candidates_) {
-      if (!alive_vertex(candidate.a) || !alive_vertex(candidate.b)) continue;
-      const bool short_edge = squared_distance(p_[candidate.a], p_[candidate.b]) < low_squared;
-      collapses += try_collapse(candidate.a, candidate.b, !short_edge);
+    auto count_removed = [&](Workspace& w) {
+      for (const auto u : w.removed) --component_size_[component_[u]];
+      collapses += static_cast<std::int64_t>(w.removed.size());
+      w.removed.clear();
+    };
+    count_removed(zone_work[0]);
+    count_removed(zone_work[1]);
+    // The deferred candidates of both zones, in the order of the classes (then zone 0 before zone 1).
+    auto& deferred = zone_work[0].deferred;
+    deferred.insert(deferred.end(), zone_work[1].deferred.begin(), zone_work[1].deferred.end());
+    std::stable_sort(deferred.begin(), deferred.end(), [&](const Candidate& x, const Candidate& y) {
+      return length_class(x.squared_length) < length_class(y.squared_length);
+    });
+    auto& serial = zone_work[0];
+    for (const auto& c : deferred) {
+      if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
+      const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
+      if (try_collapse(c.a, c.b, !short_edge, serial, -1) == Outcome::kCollapsed) count_removed(serial);
     }
     return collapses;
+  }
+
+  // zone_[v] for the alive vertices (0 or 1 by x against the median), and how many vertices of each
+  // component each zone may remove in its parallel pass: half of what a component has beyond 64, so
+  // that no component comes near a tetrahedron without the serial pass's checks.
+  void assign_zones() {
+    std::vector<double> xs;
+    xs.reserve(out_.size());
+    for (std::size_t v = 0; v < out_.size(); ++v)
+      if (out_[v] != kDead) xs.push_back(p_[v][0]);
+    double split = 0;
+    if (!xs.empty()) {
+      std::nth_element(xs.begin(), xs.begin() + static_cast<std::ptrdiff_t>(xs.size() / 2), xs.end());
+      split = xs[xs.size() / 2];
+    }
+    zone_.resize(out_.size());
+    for (std::size_t v = 0; v < out_.size(); ++v) zone_[v] = p_[v][0] < split ? 0 : 1;
+    zone_budget_.resize(component_size_.size());
+    for (std::size_t r = 0; r < component_size_.size(); ++r) zone_budget_[r] = std::max<std::int64_t>(0, (component_size_[r] - 64) / 2);
   }
 
   // One pass of angle-improving flips over every edge, in triangle order. Returns the number of flips.
@@ -408,30 +504,38 @@ class Surface {
   // The upper bound of SimplifyReport::max_vertex_distance: each removed vertex is measured against
   // the triangles around the vertex it was merged into (transitively), then around each vertex nearer to
   // it on a walk from there (to the nearest neighbour, while one is nearer).
-  [[nodiscard]] double removed_vertex_distance() {
-    double largest = 0;
-    for (std::int32_t x = 0; x < static_cast<std::int32_t>(out_.size()); ++x) {
-      if (alive_vertex(x)) continue;
-      std::int32_t r = merged_into_[x];
-      while (!alive_vertex(r)) r = merged_into_[r];
-      merged_into_[x] = r;  // later vertices merged into x find r at once
-      const Vec3& point = p_[x];
-      double nearest = INFINITY, closest_vertex = squared_distance(point, p_[r]);
-      for (int steps = 0; steps < 16; ++steps) {
-        std::int32_t g = out_[r], next = kDead;
-        do {
-          const std::int32_t w = to(g);
-          nearest = std::min(nearest, point_triangle_distance(point, p_[r], p_[w], p_[apex(g)]));
-          const double d = squared_distance(point, p_[w]);
-          if (d < closest_vertex) closest_vertex = d, next = w;
-          g = rotate(g);
-        } while (g != out_[r]);
-        if (next == kDead) break;
-        r = next;
+  [[nodiscard]] double removed_vertex_distance() const {
+    const auto vertices = static_cast<std::int32_t>(out_.size());
+    auto largest_in = [&](std::int32_t first, std::int32_t last) {
+      double largest = 0;
+      for (std::int32_t x = first; x < last; ++x) {
+        if (alive_vertex(x)) continue;
+        std::int32_t r = merged_into_[x];
+        while (!alive_vertex(r)) r = merged_into_[r];
+        const Vec3& point = p_[x];
+        double nearest = INFINITY, closest_vertex = squared_distance(point, p_[r]);
+        for (int steps = 0; steps < 16; ++steps) {
+          std::int32_t g = out_[r], next = kDead;
+          do {
+            const std::int32_t w = to(g);
+            nearest = std::min(nearest, point_triangle_distance(point, p_[r], p_[w], p_[apex(g)]));
+            const double d = squared_distance(point, p_[w]);
+            if (d < closest_vertex) closest_vertex = d, next = w;
+            g = rotate(g);
+          } while (g != out_[r]);
+          if (next == kDead) break;
+          r = next;
+        }
+        largest = std::max(largest, nearest);
       }
-      largest = std::max(largest, nearest);
-    }
-    return largest;
+      return largest;
+    };
+    if (threads_ <= 1) return largest_in(0, vertices);
+    double second_half = 0;
+    std::thread second([&] { second_half = largest_in(vertices / 2, vertices); });  // reads only
+    const double first_half = largest_in(0, vertices / 2);
+    second.join();
+    return std::max(first_half, second_half);
   }
 
   [[nodiscard]] const std::vector<Triangle>& triangles() const { return tri_; }
@@ -440,20 +544,16 @@ class Surface {
   }
 
  private:
-  struct Candidate {
-    float squared_length;
-    std::int32_t a, b;
-  };
   const std::vector<Vec3>& p_;
   std::vector<Triangle> tri_;
   SimplifyOptions options_;
-  std::vector<std::int32_t> opp_, out_, component_, mark_, fan_, merged_into_;
+  std::vector<std::int32_t> opp_, out_, component_, merged_into_;
   std::vector<std::int64_t> component_size_;
   std::vector<bool> kept_;
   std::vector<Candidate> candidates_, sorted_;
-  std::vector<std::int32_t> ring_a_, ring_b_;
-  std::vector<Vec3> points_a_, points_b_;
-  std::int32_t stamp_ = 0;
+  std::vector<std::int8_t> zone_;
+  std::vector<std::int64_t> zone_budget_;
+  int threads_ = 1;
   double cos_min_angle_ = 1, cos_normal_change_squared_ = 1, longest_squared_ = INFINITY;
 };
 
@@ -496,7 +596,8 @@ Mesh simplify_surface(const Mesh& mesh, const SimplifyOptions& options, Simplify
   r.triangles_before = static_cast<std::int64_t>(mesh.triangle_count());
   const ShapeFigures before = shape_figures(mesh.positions, mesh.triangles);
   r.area_before = before.area, r.mean_edge_before = before.mean_edge, r.min_angle_before_degrees = before.min_angle_degrees;
-  Surface surface(mesh, options);
+  const unsigned hardware = std::thread::hardware_concurrency();
+  Surface surface(mesh, options, options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, hardware)));
   if (options.target_edge_length > 0) {
     std::int64_t left = r.vertices_before;
     for (int round = 0; round < options.max_rounds; ++round) {

@@ -144,6 +144,12 @@ TEST(Simplify, IsDeterministicAndTargetZeroKeepsTheMesh) {
   const Mesh a = simplify_surface(bumpy, options), b = simplify_surface(bumpy, options);
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.triangles, b.triangles);
+  for (const int threads : {1, 2, 3}) {  // two zones worked on in parallel: the same result on any count
+    options.threads = threads;
+    const Mesh c = simplify_surface(bumpy, options);
+    EXPECT_EQ(c.positions, a.positions);
+    EXPECT_EQ(c.triangles, a.triangles);
+  }
   options.target_edge_length = 0;
   SimplifyReport report;
   const Mesh same = simplify_surface(bumpy, options, &report);

@@ -29,6 +29,8 @@ struct SimplifyOptions {
   int max_rounds = 12;
   /// Also compute SimplifyReport::max_vertex_distance (about a tenth of the time of the simplification).
   bool measure_distance = true;
+  /// Threads (0: one per hardware thread; more than 2 are not used). The result does not depend on it.
+  int threads = 0;
   /// Vertices that must stay (e.g. poles chosen by the user); indices into the input.
   std::vector<std::int32_t> kept_vertices;
 };
