@@ -297,6 +297,10 @@ const std::vector<ReportColumn>& report_columns_after_repair() {
       {"repair_area_before", {"structure", "topology_repair", "area_before"}},
       {"repair_area_after", {"structure", "topology_repair", "area_after"}},
       {"repair_area_changed_percent", {"structure", "topology_repair", "area_changed_percent"}},
+      {"simplified_vertices_before", {"simplification", "vertices_before"}},
+      {"simplified_area_before", {"simplification", "area_before"}},
+      {"simplified_area_after", {"simplification", "area_after"}},
+      {"simplified_max_vertex_distance", {"simplification", "max_vertex_distance"}},
       {"map_method", {"map", "method"}},
       {"north_pole", {"map", "north_pole"}},
       {"south_pole", {"map", "south_pole"}},
@@ -329,8 +333,8 @@ const std::vector<ReportColumn>& report_columns_after_repair() {
 }
 
 constexpr int kOctants = 8;
-constexpr const char* kTimingColumns[] = {"seconds_read",    "seconds_surface", "seconds_prepare",
-                                          "seconds_map",     "seconds_metrics", "seconds_total"};
+constexpr const char* kTimingColumns[] = {"seconds_read", "seconds_surface", "seconds_simplify", "seconds_prepare",
+                                          "seconds_map",  "seconds_metrics", "seconds_total"};
 
 }  // namespace
 
@@ -481,10 +485,12 @@ Json summary_row(const BatchInput& input, Weights weights, const fs::path& root,
       if (!value.is_number()) continue;
       const double seconds = value.get<double>();
       total += seconds;
-      if (stage != "read" && stage != "surface" && stage != "prepare" && stage != "metrics") map += seconds;
+      if (stage != "read" && stage != "surface" && stage != "simplify" && stage != "prepare" && stage != "metrics")
+        map += seconds;
     }
     row["seconds_read"] = at(timings, {"read"});
     row["seconds_surface"] = at(timings, {"surface"});
+    row["seconds_simplify"] = at(timings, {"simplify"});
     row["seconds_prepare"] = at(timings, {"prepare"});
     // Sums to the microsecond: their last bits are noise, not information.
     row["seconds_map"] = std::round(map * 1e6) / 1e6;
