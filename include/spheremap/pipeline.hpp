@@ -75,6 +75,7 @@ struct SurfaceComponentReport {
 /// A molecular surface with its components analysed.
 struct MolecularSurface {
   Mesh mesh;  // every component, with atom provenance
+  std::vector<Atom> atoms;  // the atoms it was made of (what `atomid` indexes)
   std::vector<MeshComponent> components;          // largest area first
   std::vector<SurfaceComponentReport> reports;    // same order
   std::vector<StageTime> timings;                 // wall-clock seconds of its stages ("field", "contour", ...)
@@ -90,9 +91,12 @@ Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions
 
 /// Atoms to their SES with full atom provenance (add_atom_provenance), the outer surface (largest
 /// component) repaired to genus 0 by repair_outer_genus unless keep_topology; components analysed.
+/// With full_provenance false, vertices get only the integer attributes of add_nearest_atoms (`atomid`
+/// and the others): the text ones cost time and memory on millions of vertices, and a caller that
+/// simplifies the surface first adds them to what it keeps (add_atom_provenance).
 /// Throws InputError as solvent_excluded_field does.
 MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                                  TopologyRepair* repair);
+                                  TopologyRepair* repair, bool full_provenance = true);
 
 struct MapJobResult {
   std::filesystem::path input;

@@ -189,7 +189,7 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
 }  // namespace
 
 MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                                  TopologyRepair* repair) {
+                                  TopologyRepair* repair, bool full_provenance) {
   MolecularSurface result;
   TopologyRepair local;
   TopologyRepair& report = repair ? *repair : local;
@@ -229,7 +229,8 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     }
   }
   add_nearest_atoms(mesh, atoms, surface);
-  add_atom_provenance(mesh, atoms);
+  if (full_provenance) add_atom_provenance(mesh, atoms);
+  result.atoms = atoms;
   lap("provenance");
   result.mesh = std::move(mesh);
   result.components = mesh_components(result.mesh);
@@ -255,7 +256,7 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
   result.structure = molecule.report;
   const auto surface_start = std::chrono::steady_clock::now();
   try {
-    surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology);
+    surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology, false);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", input.string(), e.what()));
   }
@@ -269,8 +270,8 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
 }
 
 // Prepares component `chosen` of a molecular surface for mapping (flagged as mapped in the report).
-// Returns the component's name for messages.
-std::string prepare_surface_component(const MolecularSurface& surface, std::size_t chosen, const std::string& name,
+// Takes the surface's mesh when it is its only component. Returns the component's name for messages.
+std::string prepare_surface_component(MolecularSurface& surface, std::size_t chosen, const std::string& name,
                                       const MapJobOptions& options, MapJobResult& result) {
   if (surface.components[chosen].genus != 0) {
     throw MeshRefused(fmt::format(
@@ -284,13 +285,16 @@ std::string prepare_surface_component(const MolecularSurface& surface, std::size
   MapJobOptions named = options;
   named.prepare.source_name = chosen == 0 ? name : fmt::format("{}, component {}", name, chosen);
   named.prepare.component = kComponentRefuse;
-  Mesh component = extract_component(surface.mesh, surface.components[chosen]);
+  Mesh component = surface.components.size() == 1 ? std::move(surface.mesh)  // nothing else needs it
+                                                  : extract_component(surface.mesh, surface.components[chosen]);
   if (options.simplify.target_edge_length > 0) {
     const auto simplify_start = std::chrono::steady_clock::now();
     component = simplify_surface(component, options.simplify, &result.simplification);
     result.simplified = true;
     result.simplify_seconds = seconds_since(simplify_start);
   }
+  // The text provenance of the vertices that are mapped (load_molecular_surface leaves it out).
+  add_atom_provenance(component, surface.atoms);
   const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(component, named.prepare);
   result.prepare_seconds = seconds_since(prepare_start);
