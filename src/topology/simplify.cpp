@@ -89,6 +89,7 @@ class Surface {
   struct Workspace {
     std::vector<std::int32_t> ring_a, ring_b, fan;
     std::vector<Vec3> points_a, points_b;
+    std::vector<double> worst_a, worst_b;
     std::vector<Candidate> deferred;
     std::vector<std::int32_t> removed;  // vertices collapsed, not yet taken off their component's size
     std::vector<std::int64_t> removed_in;  // per component (by root): collapses in this zone this round
@@ -156,6 +157,8 @@ class Surface {
     component_size_.assign(static_cast<std::size_t>(vertices), 0);
     for (std::int32_t v = 0; v < vertices; ++v) component_[v] = root(v), ++component_size_[component_[v]];
     merged_into_.assign(static_cast<std::size_t>(vertices), kDead);
+    quality_.resize(tri_.size());
+    for (std::size_t t = 0; t < tri_.size(); ++t) quality_[t] = triangle_cosine(static_cast<std::int32_t>(t));
     kept_.assign(static_cast<std::size_t>(vertices), false);
     for (const auto v : options.kept_vertices) {
       if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a kept vertex does not exist");
@@ -208,14 +211,15 @@ class Surface {
 
   // The neighbours of v in rotation order (triangles (v, ring[i], ring[i + 1])), with their positions;
   // returns the half-edge from v to `target` (kDead if they are not adjacent).
+  // `worst` gets the worst_corner_cosine of each triangle (v, ring[i], ring[i + 1]).
   std::int32_t gather_ring(std::int32_t v, std::int32_t target, std::vector<std::int32_t>& ring,
-                           std::vector<Vec3>& points) const {
-    ring.clear(), points.clear();
+                           std::vector<Vec3>& points, std::vector<double>& worst) const {
+    ring.clear(), points.clear(), worst.clear();
     std::int32_t g = out_[v], found = kDead;
     do {
       const std::int32_t w = to(g);
       if (w == target) found = g;
-      ring.push_back(w), points.push_back(p_[w]);
+      ring.push_back(w), points.push_back(p_[w]), worst.push_back(quality_[g / 3]);
       g = rotate(g);
     } while (g != out_[v]);
     return found;
@@ -226,7 +230,8 @@ class Surface {
   // the distance of u from them in *distance. The link condition and the degrees of the two apexes are
   // the caller's (they do not depend on the direction).
   bool collapse_allowed(const Vec3& pu, const std::vector<std::int32_t>& ring, const std::vector<Vec3>& points,
-                        std::size_t j, bool must_improve, double* worst, double* distance) {
+                        const std::vector<double>& old_cosines, std::size_t j, bool must_improve, double* worst,
+                        double* distance) {
     const std::size_t n = ring.size();
     const Vec3& pv = points[j];
     const std::size_t before = (j + n - 1) % n, after = (j + 1) % n;
@@ -243,13 +248,10 @@ class Surface {
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t next = i + 1 == n ? 0 : i + 1;
       const Vec3 &p1 = points[i], &p2 = points[next];
-      if (i == j || next == j) {  // the two triangles that vanish
-        old_worst = std::max(old_worst, worst_corner_cosine(pu, p1, p2));
-        continue;
-      }
-      const Vec3 new_normal = cross(p1 - pv, p2 - pv);
-      const double old_cosine = worst_corner_cosine(pu, p1, p2);
+      const double old_cosine = old_cosines[i];
       old_worst = std::max(old_worst, old_cosine);
+      if (i == j || next == j) continue;  // the two triangles that vanish
+      const Vec3 new_normal = cross(p1 - pv, p2 - pv);
       if (old_cosine < kSliverCosine) {
         const Vec3 old_normal = cross(p1 - pu, p2 - pu);
         if (!faces_within_turn(new_normal, old_normal, dot(old_normal, old_normal))) return false;
@@ -259,8 +261,10 @@ class Surface {
       new_worst = std::max(new_worst, worst_corner_cosine(pv, p1, p2));
     }
     if (new_worst > std::max(old_worst, cos_min_angle_) || (must_improve && !(new_worst < old_worst))) return false;
+    // The first new triangle within the tolerance settles it (its distance breaks ties between the two
+    // directions).
     double nearest = INFINITY;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < n && !(nearest <= options_.max_error); ++i) {
       const std::size_t next = i + 1 == n ? 0 : i + 1;
       if (i != j && next != j) nearest = std::min(nearest, point_triangle_distance(pu, pv, points[i], points[next]));
     }
@@ -281,10 +285,10 @@ class Surface {
     auto outside_zone = [&](const std::vector<std::int32_t>& ring) {
       return zone >= 0 && std::any_of(ring.begin(), ring.end(), [&](std::int32_t x) { return zone_[x] != zone; });
     };
-    const std::int32_t ab = gather_ring(a, b, w.ring_a, w.points_a);
+    const std::int32_t ab = gather_ring(a, b, w.ring_a, w.points_a, w.worst_a);
     if (ab == kDead) return Outcome::kRefused;
     if (outside_zone(w.ring_a)) return Outcome::kDeferred;
-    if (for_quality && !(triangle_cosine(ab / 3) > cos_min_angle_ || triangle_cosine(opp_[ab] / 3) > cos_min_angle_))
+    if (for_quality && !(quality_[ab / 3] > cos_min_angle_ || quality_[opp_[ab] / 3] > cos_min_angle_))
       return Outcome::kRefused;
     const std::int32_t component = component_[a];
     if (zone >= 0 && w.removed_in[static_cast<std::size_t>(component)] >= zone_budget_[static_cast<std::size_t>(component)])
@@ -293,7 +297,7 @@ class Surface {
     // The apexes of the two triangles on ab each lose an edge: they need degree 4 or more.
     if (degree(apex(ab)) < 4 || degree(apex(opp_[ab])) < 4) return Outcome::kRefused;
     const std::int32_t ba = opp_[ab];
-    gather_ring(b, kDead, w.ring_b, w.points_b);
+    gather_ring(b, kDead, w.ring_b, w.points_b, w.worst_b);
     if (outside_zone(w.ring_b)) return Outcome::kDeferred;
     // Link condition: a and b have exactly the two apexes as common neighbours (with more than 4 vertices
     // in the component this also rules out a shared link edge).
@@ -304,9 +308,9 @@ class Surface {
     const auto a_in_b = static_cast<std::size_t>(std::find(w.ring_b.begin(), w.ring_b.end(), a) - w.ring_b.begin());
     double worst_ab = 0, worst_ba = 0, distance_ab = 0, distance_ba = 0;
     const bool remove_a =
-        !kept_[a] && collapse_allowed(p_[a], w.ring_a, w.points_a, b_in_a, for_quality, &worst_ab, &distance_ab);
+        !kept_[a] && collapse_allowed(p_[a], w.ring_a, w.points_a, w.worst_a, b_in_a, for_quality, &worst_ab, &distance_ab);
     const bool remove_b =
-        !kept_[b] && collapse_allowed(p_[b], w.ring_b, w.points_b, a_in_b, for_quality, &worst_ba, &distance_ba);
+        !kept_[b] && collapse_allowed(p_[b], w.ring_b, w.points_b, w.worst_b, a_in_b, for_quality, &worst_ba, &distance_ba);
     if (!remove_a && !remove_b) return Outcome::kRefused;
     const bool a_goes =
         remove_a && (!remove_b || worst_ab < worst_ba || (worst_ab == worst_ba && distance_ab <= distance_ba));
@@ -334,6 +338,7 @@ class Surface {
       const std::int32_t t = f / 3;
       if (t == t1 || t == t2) continue;
       tri_[t][f % 3] = v;
+      quality_[t] = triangle_cosine(t);
     }
     // y1 now runs v -> a, x1 a -> v, x2 b -> v: valid leaving half-edges for v, a and b.
     out_[v] = y1, out_[from(x1)] = x1, out_[from(x2)] = x2, out_[u] = kDead;
@@ -368,6 +373,7 @@ class Surface {
     const std::int32_t ad = opp_[3 * t2 + next_corner(back % 3)], db = opp_[3 * t2 + previous_corner(back % 3)];
     tri_[t1] = {c, a, d};
     tri_[t2] = {d, b, c};
+    quality_[t1] = triangle_cosine(t1), quality_[t2] = triangle_cosine(t2);
     auto link = [&](std::int32_t x, std::int32_t y) { opp_[x] = y, opp_[y] = x; };
     link(3 * t1 + 0, ca), link(3 * t1 + 1, ad), link(3 * t1 + 2, 3 * t2 + 2);
     link(3 * t2 + 0, db), link(3 * t2 + 1, bc);
@@ -390,7 +396,7 @@ class Surface {
       // Every edge of a triangle with a corner below min_angle_degrees is a candidate too, whatever its
       // length: a sliver whose short edges are long already (a vertex almost on the opposite edge, often
       // of degree 3, which no flip can remove) goes only by a collapse.
-      const bool sliver = triangle_cosine(t) > cos_min_angle_;
+      const bool sliver = quality_[t] > cos_min_angle_;
       for (int k = 0; k < 3; ++k) {
         const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
         const double squared_length = squared_distance(p_[a], p_[b]);
@@ -563,6 +569,7 @@ class Surface {
   std::vector<std::int32_t> opp_, out_, component_, merged_into_;
   std::vector<std::int64_t> component_size_;
   std::vector<bool> kept_;
+  std::vector<double> quality_;  // worst_corner_cosine of each triangle, kept up to date
   std::vector<Candidate> candidates_, block_buffer_;
   std::vector<std::int8_t> zone_;
   std::vector<std::int64_t> zone_budget_;
