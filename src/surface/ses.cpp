@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "atom_grid.hpp"
 #include "parallel.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -15,113 +16,7 @@
 namespace spheremap {
 namespace {
 
-// Atoms bucketed in a dense grid of cubic cells (atoms of a cell in increasing index order).
-class AtomGrid {
- public:
-  AtomGrid(const std::vector<Atom>& atoms, double cell) : atoms_(atoms), cell_(cell) {
-    Vec3 hi = atoms.front().position;
-    lo_ = hi;
-    for (const auto& a : atoms)
-      for (int d = 0; d < 3; ++d) lo_[d] = std::min(lo_[d], a.position[d]), hi[d] = std::max(hi[d], a.position[d]);
-    for (int d = 0; d < 3; ++d) n_[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo_[d]) / cell_)) + 1;
-    start_.assign(static_cast<std::size_t>(n_[0] * n_[1] * n_[2] + 1), 0);
-    std::vector<std::int64_t> cell_of(atoms.size());
-    for (std::size_t a = 0; a < atoms.size(); ++a) {
-      const auto c = cell_index(atoms[a].position);
-      cell_of[a] = c[0] + n_[0] * (c[1] + n_[1] * c[2]);
-      ++start_[static_cast<std::size_t>(cell_of[a]) + 1];
-    }
-    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    members_.resize(atoms.size());
-    std::vector<std::int32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t a = 0; a < atoms.size(); ++a) members_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[a])]++)] = static_cast<std::int32_t>(a);
-  }
-
-  // Calls visit(atom index) for every atom in the cells that meet the cube of half-width `reach` around p
-  // (a superset of the atoms whose centre is within `reach`).
-  template <typename Visit>
-  void near(const Vec3& p, double reach, Visit&& visit) const {
-    std::array<std::int64_t, 3> first, last;
-    for (int d = 0; d < 3; ++d) {
-      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
-      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
-      if (first[d] > last[d]) return;
-    }
-    for (std::int64_t z = first[2]; z <= last[2]; ++z)
-      for (std::int64_t y = first[1]; y <= last[1]; ++y)
-        for (std::int64_t x = first[0]; x <= last[0]; ++x) {
-          const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
-          for (auto m = start_[c]; m < start_[c + 1]; ++m) visit(members_[static_cast<std::size_t>(m)]);
-        }
-  }
-
-  // The atom whose van der Waals sphere is nearest to p: smallest |p - centre| - radius, ties to the
-  // smallest index. `hint` (any atom, e.g. the answer for a nearby point) gives the first bound; the
-  // answer does not depend on it. Only cells that can hold a nearer sphere are visited.
-  [[nodiscard]] std::int32_t nearest_sphere(const Vec3& p, double largest_radius, std::int32_t hint) const {
-    std::int32_t chosen = hint;
-    double best = norm(p - atoms_[hint].position) - atoms_[hint].radius;
-    // An atom can only be nearer if its centre is within best + largest_radius of p.
-    const double reach = best + largest_radius;
-    std::array<std::int64_t, 3> first, last;
-    for (int d = 0; d < 3; ++d) {
-      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
-      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
-      if (first[d] > last[d]) return chosen;
-    }
-    auto gap_along = [&](int d, std::int64_t c) {
-      const double low = lo_[d] + cell_ * static_cast<double>(c), high = low + cell_;
-      return p[d] < low ? low - p[d] : p[d] > high ? p[d] - high : 0.0;
-    };
-    for (std::int64_t z = first[2]; z <= last[2]; ++z) {
-      const double gz = gap_along(2, z);
-      for (std::int64_t y = first[1]; y <= last[1]; ++y) {
-        const double gy = gap_along(1, y), gyz = gy * gy + gz * gz;
-        for (std::int64_t x = first[0]; x <= last[0]; ++x) {
-          const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
-          if (start_[c] == start_[c + 1]) continue;
-          const double gx = gap_along(0, x), bound = best + largest_radius;
-          if (gx * gx + gyz > bound * bound) continue;  // every centre in the cell is farther than bound
-          for (auto m = start_[c]; m < start_[c + 1]; ++m) {
-            const std::int32_t index = members_[static_cast<std::size_t>(m)];
-            const Atom& atom = atoms_[index];
-            const double limit = best + atom.radius;
-            if (squared_distance(p, atom.position) > limit * limit * (1 + 1e-12)) continue;  // gap > best for sure
-            const double gap = norm(p - atom.position) - atom.radius;
-            if (gap < best || (gap == best && index < chosen)) best = gap, chosen = index;
-          }
-        }
-      }
-    }
-    return chosen;
-  }
-
-  // Some atom in the cells around p (the first found), or atom 0.
-  [[nodiscard]] std::int32_t some_atom_near(const Vec3& p) const {
-    const auto home = cell_index(p);
-    for (std::int64_t r = 0; r <= 2; ++r)
-      for (std::int64_t z = std::max<std::int64_t>(0, home[2] - r); z <= std::min(n_[2] - 1, home[2] + r); ++z)
-        for (std::int64_t y = std::max<std::int64_t>(0, home[1] - r); y <= std::min(n_[1] - 1, home[1] + r); ++y)
-          for (std::int64_t x = std::max<std::int64_t>(0, home[0] - r); x <= std::min(n_[0] - 1, home[0] + r); ++x) {
-            const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
-            if (start_[c] < start_[c + 1]) return members_[static_cast<std::size_t>(start_[c])];
-          }
-    return 0;
-  }
-
- private:
-  std::array<std::int64_t, 3> cell_index(const Vec3& p) const {
-    std::array<std::int64_t, 3> c;
-    for (int d = 0; d < 3; ++d)
-      c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[d] - lo_[d]) / cell_)), 0, n_[d] - 1);
-    return c;
-  }
-  const std::vector<Atom>& atoms_;
-  double cell_;
-  Vec3 lo_{};
-  std::array<std::int64_t, 3> n_{};
-  std::vector<std::int32_t> start_, members_;
-};
+using detail::AtomGrid;
 
 // floor and ceil for |x| < 2^52 without a libm call (no SSE4.1 rounding in a default build).
 inline std::int64_t floor_int(double x) {
@@ -767,37 +662,6 @@ Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& ato
 
 Mesh surface_from_field(const Grid3<float>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
   return contour_with_atoms(field, atoms, options);
-}
-
-void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  const std::size_t n = mesh.vertex_count();
-  std::vector<std::int32_t> atom_index(n), serial(n), residue(n), model(n);
-  if (n > 0) {
-    if (atoms.empty()) throw InputError("no atoms to take surface provenance from");
-    double largest_radius = 0;
-    for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
-    const AtomGrid grid(atoms, 2.0);
-    constexpr std::size_t kChunk = 4096;
-    detail::parallel_chunks(static_cast<std::int64_t>((n + kChunk - 1) / kChunk), detail::surface_threads(options.threads),
-                            [&](std::int64_t chunk, int) {
-                              const std::size_t first = static_cast<std::size_t>(chunk) * kChunk;
-                              std::int32_t chosen = grid.some_atom_near(mesh.positions[first]);
-                              for (std::size_t v = first; v < std::min(n, first + kChunk); ++v) {
-                                // Consecutive vertices are neighbours on the grid: the last answer is a close bound.
-                                const Vec3& p = mesh.positions[v];
-                                if (norm(p - atoms[chosen].position) - atoms[chosen].radius > 2 * largest_radius) chosen = grid.some_atom_near(p);
-                                chosen = grid.nearest_sphere(p, largest_radius, chosen);
-                                atom_index[v] = chosen;
-                                serial[v] = atoms[chosen].serial;
-                                residue[v] = atoms[chosen].residue_number;
-                                model[v] = atoms[chosen].model;
-                              }
-                            });
-  }
-  mesh.integer_attributes["atomid"] = std::move(atom_index);
-  mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
-  mesh.integer_attributes["vertex_residue_number"] = std::move(residue);
-  mesh.integer_attributes["vertex_model"] = std::move(model);
 }
 
 }  // namespace spheremap
