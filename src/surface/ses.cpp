@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
+#ifdef SPHEREMAP_SURFACE_STAGE_TIMES
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#endif
 
 #include <fmt/format.h>
 
@@ -15,6 +21,29 @@
 
 namespace spheremap {
 namespace {
+// Wall and CPU time of each step of the field on stderr, for profiling (BENCHMARKS.md, "Where the time
+// goes"): build with -DSPHEREMAP_SURFACE_STAGE_TIMES. Otherwise it does nothing.
+class StageClock {
+ public:
+#ifdef SPHEREMAP_SURFACE_STAGE_TIMES
+  void lap(const char* step) {
+    const double wall = wall_seconds(), cpu = cpu_seconds();
+    std::fprintf(stderr, "surface stage %-12s %.3f s wall %.3f s CPU\n", step, wall - wall_, cpu - cpu_);
+    wall_ = wall, cpu_ = cpu;
+  }
+
+ private:
+  static double wall_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+  static double cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+  double wall_ = wall_seconds(), cpu_ = cpu_seconds();
+#else
+  void lap(const char*) {}
+#endif
+};
 
 using detail::AtomGrid;
 
@@ -178,7 +207,7 @@ class Components {
 // carve_cavities, everything joined to an outside sample carves).
 template <typename T>
 std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, std::int64_t pockets,
-                                        bool carve_cavities, int threads) {
+                                        bool carve_cavities, int threads, StageClock& clock) {
   const double h = field.spacing;
   const auto [nx, ny, nz] = field.size;
   const auto count = static_cast<std::int32_t>(atoms.size());
@@ -213,6 +242,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   neighbours.reserve(static_cast<std::size_t>(neighbour_start.back()));
   for (auto& part : chunk_neighbours) neighbours.insert(neighbours.end(), part.begin(), part.end()), std::vector<std::int32_t>().swap(part);
 
+  clock.lap("neighbours");
   // Whether p (on the sphere of `self`) is strictly inside another enlarged sphere.
   // `hint` remembers the last covering atom: neighbouring points are mostly covered by the same one.
   auto covered = [&](const Vec3& p, std::int32_t self, std::int32_t& hint) {
@@ -397,6 +427,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
       }
     }
   });
+  clock.lap("arcs");
   // Components of outside, pockets and arcs: nodes 0 (outside), 1..pockets, then the arcs in order.
   std::vector<std::int64_t> arc_start(static_cast<std::size_t>(chunks) + 1, 0);
   for (std::int64_t c = 0; c < chunks; ++c) arc_start[static_cast<std::size_t>(c) + 1] = arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
@@ -431,6 +462,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     }
   });
 
+  clock.lap("pockets");
   // A point of the SAS counts as a probe centre when its arc carves; other points (radial projections,
   // on the faces) when a carving sample (0) is among the 27 around their nearest sample.
   auto connected = [&](const Vec3& unit) {
@@ -497,6 +529,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
       if (carves[static_cast<std::size_t>(offset + arcs.vertex_arc[s])]) out.push_back(arcs.vertices[s]);
   });
   chunk_arcs.clear();
+  clock.lap("projections");
   std::size_t total = 0;
   for (const auto& part : chunk_centres) total += part.size();
   std::vector<Vec3> centres;
@@ -520,57 +553,162 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   return sorted;
 }
 
-// Lowers every sample within `radius` (grid units) of a centre (and some a little farther: any sample
-// may take its exact distance to a valid centre) to its squared distance in grid units². Rows of a ball
-// of radius `radius` + sqrt(3)/2 around the nearest sample hold every sample within `radius` of the
-// centre; they come from one table, so the inner loop has no square root or rounding. Plane k belongs
-// to chunk k % threads; min is exact and order-free, so the result is deterministic.
+// std::llround (half away from zero) without a libm call, for |x| < 2^52.
+inline std::int64_t round_int(double x) {
+  const auto t = static_cast<std::int64_t>(x);  // towards zero; x - t is exact
+  const double rest = x - static_cast<double>(t);
+  return rest >= 0.5 ? t + 1 : rest <= -0.5 ? t - 1 : t;
+}
+
+// Runs of this many samples along axis 0 (segment i / kSegment of row (j, k)) tell lower_near_centres
+// which rows it may skip.
+constexpr std::int64_t kSegment = 8;
+
+// values[m] = min(values[m], across + (m + start)²) for m in [0, length): one row of a ball.
 template <typename T>
-void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, int threads) {
+inline void lower_row(T* values, std::int32_t length, T across, T start) {
+  for (std::int32_t m = 0; m < length; ++m) {
+    const T dx = static_cast<T>(m) + start;
+    const T value = across + dx * dx;
+    values[m] = value < values[m] ? value : values[m];
+  }
+}
+
+// The same for a row whose `padded` samples (a multiple of 4, at most length + 3) may all be read and
+// written: whole vectors with the samples past `length` masked out, rather than a vector loop with a
+// tail for every row (rows are short: 5 to 19 samples), which cost more in loop control and branch
+// misses than in arithmetic. The values are those of lower_row to the last bit.
+#if defined(__GNUC__)
+using Floats = float __attribute__((vector_size(16)));
+using Ints = std::int32_t __attribute__((vector_size(16)));
+
+// Vectors [0, vectors) of a padded row, unrolled.
+template <int vectors>
+inline void lower_vectors(float* values, Floats m, Floats end, Floats a, Floats s) {
+  const Floats four = {4, 4, 4, 4};
+  for (int q = 0; q < vectors; ++q, m += four) {
+    Floats old;
+    std::memcpy(&old, values + 4 * q, sizeof old);
+    const Floats dx = m + s;
+    const Floats value = a + dx * dx;
+    const Ints take = (value < old) & (m < end);
+    const Floats out = reinterpret_cast<Floats>((reinterpret_cast<Ints>(value) & take) | (reinterpret_cast<Ints>(old) & ~take));
+    std::memcpy(values + 4 * q, &out, sizeof out);
+  }
+}
+#endif
+
+inline void lower_row_padded(float* values, std::int32_t padded, std::int32_t length, float across, float start) {
+#if defined(__GNUC__)
+  const Floats m = {0, 1, 2, 3};
+  const auto last = static_cast<float>(length);
+  const Floats end = {last, last, last, last}, a = {across, across, across, across}, s = {start, start, start, start};
+  switch (padded / 4) {
+    case 1: return lower_vectors<1>(values, m, end, a, s);
+    case 2: return lower_vectors<2>(values, m, end, a, s);
+    case 3: return lower_vectors<3>(values, m, end, a, s);
+    case 4: return lower_vectors<4>(values, m, end, a, s);
+    case 5: return lower_vectors<5>(values, m, end, a, s);
+    default: break;
+  }
+  (void)padded;
+#endif
+  lower_row(values, length, across, start);
+}
+inline void lower_row_padded(double* values, std::int32_t, std::int32_t length, double across, double start) {
+  lower_row(values, length, across, start);
+}
+
+// Lowers every sample within `radius` (grid units) of a centre (and some a little farther: any sample
+// may take its exact distance to a valid centre) to its squared distance in grid units², except where
+// every sample of the row's segments is at most `settled` (grid units²): such rows keep their values.
+// Rows of a ball of radius `radius` + sqrt(3)/2 around the nearest sample hold every sample within
+// `radius` of the centre; they come from one table, so the inner loop has no square root or rounding.
+// Plane k belongs to chunk k % threads; min is exact and order-free, so the result is deterministic.
+template <typename T>
+void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, double settled, int threads) {
   const auto [nx, ny, nz] = field.size;
   const double reach = radius + std::sqrt(3.0) / 2 + 1e-9;
   const auto extent = static_cast<std::int64_t>(std::ceil(reach));
+  const std::int64_t plane = nx * ny, segments = (nx + kSegment - 1) / kSegment;
+  // The rows of the ball, plane by plane (dk ascending, then dj): offsets from the nearest sample.
   struct Row {
-    std::int32_t dj, half;
+    double dj, first;                  // dj; the offset of the row's first sample along axis 0 (-half)
+    std::int64_t offset, segment_row;  // of the first sample in the field; of the row's segments
+    std::int32_t half, padded, length;
   };
-  // rows[dk + extent]: the rows of plane dk, each spanning di in [-half, half].
-  std::vector<std::vector<Row>> rows(static_cast<std::size_t>(2 * extent + 1));
-  for (std::int64_t dk = -extent; dk <= extent; ++dk)
+  std::vector<Row> rows;
+  std::vector<std::size_t> plane_rows;  // rows of plane dk: [plane_rows[dk + extent], plane_rows[dk + extent + 1])
+  for (std::int64_t dk = -extent; dk <= extent; ++dk) {
+    plane_rows.push_back(rows.size());
     for (std::int64_t dj = -extent; dj <= extent; ++dj) {
       const double rest = reach * reach - static_cast<double>(dk * dk + dj * dj);
       if (rest < 0) continue;
-      rows[static_cast<std::size_t>(dk + extent)].push_back({static_cast<std::int32_t>(dj), static_cast<std::int32_t>(std::floor(std::sqrt(rest)))});
+      const auto half = static_cast<std::int32_t>(std::floor(std::sqrt(rest)));
+      rows.push_back({static_cast<double>(dj), static_cast<double>(-half), dk * plane + dj * nx - half, (dk * ny + dj) * segments, half,
+                      (2 * half + 1 + 3) / 4 * 4, 2 * half + 1});
     }
-  const std::int64_t plane = nx * ny;
+  }
+  plane_rows.push_back(rows.size());
+  // A row of at most 2 kSegment + 1 samples spans at most three segments: its first, its last and the
+  // one between.
+  bool wide = false;
+  for (const Row& row : rows) wide = wide || row.length > 2 * kSegment + 1;
+  // open[segment]: some sample of the segment is above `settled`.
+  std::vector<std::uint8_t> open(static_cast<std::size_t>(segments * ny * nz));
+  const T limit = static_cast<T>(settled);
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    for (std::int64_t j = 0; j < ny; ++j) {
+      const T* values = field.values.data() + k * plane + j * nx;
+      std::uint8_t* flags = open.data() + (k * ny + j) * segments;
+      for (std::int64_t g = 0; g < segments; ++g) {
+        std::uint8_t any = 0;
+        for (std::int64_t i = g * kSegment; i < std::min(nx, (g + 1) * kSegment); ++i) any |= values[i] > limit;
+        flags[g] = any;
+      }
+    }
+  });
+  auto any_open = [&](const std::uint8_t* flags, std::int64_t i0, std::int64_t i1) {
+    const auto g0 = static_cast<std::uint64_t>(i0) / kSegment, g1 = static_cast<std::uint64_t>(i1) / kSegment;
+    std::uint8_t any = flags[g0] | flags[g1] | flags[(g0 + g1) / 2];
+    if (wide)
+      for (auto g = g0 + 1; g < g1; ++g) any |= flags[g];
+    return any != 0;
+  };
   detail::parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
     for (const auto& c : centres) {
-      const std::int64_t ci = std::llround(c[0]), cj = std::llround(c[1]), ck = std::llround(c[2]);
+      const std::int64_t ci = round_int(c[0]), cj = round_int(c[1]), ck = round_int(c[2]);
       const double fx = c[0] - static_cast<double>(ci), fy = c[1] - static_cast<double>(cj), fz = c[2] - static_cast<double>(ck);
-      const bool clip = ci - extent < 0 || cj - extent < 0 || ck - extent < 0 || ci + extent >= nx || cj + extent >= ny || ck + extent >= nz;
       std::int64_t dk = -extent;
       dk += (((chunk - (ck + dk)) % threads) + threads) % threads;
+      // Away from the border (the padded rows included), no row needs clipping.
+      if (ci - extent >= 0 && cj - extent >= 0 && ck - extent >= 0 && ci + extent + 3 < nx && cj + extent < ny && ck + extent < nz) {
+        T* centre_sample = field.values.data() + ck * plane + cj * nx + ci;
+        const std::uint8_t* centre_segments = open.data() + (ck * ny + cj) * segments;
+        for (; dk <= extent; dk += threads) {
+          const double z = static_cast<double>(dk) - fz, z2 = z * z;
+          const Row* end = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent + 1)];
+          for (const Row* row = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent)]; row != end; ++row) {
+            if (!any_open(centre_segments + row->segment_row, ci - row->half, ci + row->half)) continue;
+            const double y = row->dj - fy;
+            lower_row_padded(centre_sample + row->offset, row->padded, row->length, static_cast<T>(z2 + y * y), static_cast<T>(row->first - fx));
+          }
+        }
+        continue;
+      }
       for (; dk <= extent; dk += threads) {
         const std::int64_t k = ck + dk;
-        if (clip && (k < 0 || k >= nz)) continue;
+        if (k < 0 || k >= nz) continue;
         const double z = static_cast<double>(dk) - fz, z2 = z * z;
-        for (const Row& row : rows[static_cast<std::size_t>(dk + extent)]) {
-          const std::int64_t j = cj + row.dj;
-          std::int64_t i0 = ci - row.half, i1 = ci + row.half;
-          if (clip) {
-            if (j < 0 || j >= ny) continue;
-            i0 = std::max<std::int64_t>(i0, 0), i1 = std::min<std::int64_t>(i1, nx - 1);
-            if (i0 > i1) continue;
-          }
-          const double y = static_cast<double>(row.dj) - fy;
-          // In T, from an int32 offset: SSE2 vectorizes this loop (no int64 -> floating conversion).
-          const T across = static_cast<T>(z2 + y * y), start = static_cast<T>(static_cast<double>(i0 - ci) - fx);
-          T* values = field.values.data() + k * plane + j * nx + i0;
-          const auto length = static_cast<std::int32_t>(i1 - i0 + 1);
-          for (std::int32_t m = 0; m < length; ++m) {
-            const T dx = static_cast<T>(m) + start;
-            const T value = across + dx * dx;
-            values[m] = value < values[m] ? value : values[m];
-          }
+        for (auto r = plane_rows[static_cast<std::size_t>(dk + extent)]; r < plane_rows[static_cast<std::size_t>(dk + extent + 1)]; ++r) {
+          const Row& row = rows[r];
+          const std::int64_t j = cj + static_cast<std::int64_t>(row.dj);
+          if (j < 0 || j >= ny) continue;
+          const std::int64_t i0 = std::max<std::int64_t>(ci - row.half, 0), i1 = std::min<std::int64_t>(ci + row.half, nx - 1);
+          if (i0 > i1 || !any_open(open.data() + (k * ny + j) * segments, i0, i1)) continue;
+          const double y = row.dj - fy;
+          lower_row(field.values.data() + k * plane + j * nx + i0, static_cast<std::int32_t>(i1 - i0 + 1), static_cast<T>(z2 + y * y),
+                    static_cast<T>(static_cast<double>(i0 - ci) - fx));
         }
       }
     }
@@ -607,25 +745,37 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
                                  std::ceil(fitting * 100) / 100));
   }
   const int threads = detail::surface_threads(options.threads);
+  StageClock clock;
   field.values.assign(static_cast<std::size_t>(field.count()), static_cast<T>(kUnreached));
   // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those a
   // probe reaches from outside count (as for MSMS's outer surface), unless cavities are carved too.
   mark_accessible_surface(field, atoms, probe, threads);
+  clock.lap("accessible");
   const std::int64_t pockets = flood_and_label_pockets(field);
+  clock.lap("flood");
   // Which pockets a probe reaches through passages narrower than a step, and more probe centres, on the
   // SAS surface itself (found before the transform, while carving samples are exactly the zeros).
-  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, pockets, options.carve_cavities, threads);
+  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, pockets, options.carve_cavities, threads, clock);
+  clock.lap("sort");
   squared_distance_transform_in_place(field, threads);
+  clock.lap("transform");
   // Each surface centre lowers the samples within probe + sqrt(3) steps of it. That makes g exact (for
   // this set of centres) wherever |g| < sqrt(3) steps, which covers both ends of every lattice edge the
   // surface crosses (g changes by at most the edge length along it), so the contour is the same as with
   // an unbounded reach; deeper inside, the grid samples alone give g.
-  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), threads);
+  // Samples within probe/h - sqrt(3) steps of a lattice centre need no lowering: they stay outside and
+  // no edge the surface crosses reaches them (a neighbour along a lattice edge, at most sqrt(3) steps
+  // away, is within probe/h of that centre, hence not inside). 0.01 of a step keeps rounding away from
+  // that bound; zeros cannot be lowered anyway.
+  const double free_reach = probe / h - std::sqrt(3.0) - 0.01;
+  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), free_reach > 0 ? free_reach * free_reach : 0.0, threads);
+  clock.lap("lower");
   const std::int64_t plane = field.size[0] * field.size[1];
   detail::parallel_chunks(field.size[2], threads, [&](std::int64_t k, int) {
     T* values = field.values.data() + k * plane;
     for (std::int64_t s = 0; s < plane; ++s) values[s] = static_cast<T>(std::sqrt(static_cast<double>(values[s])) * h - probe);
   });
+  clock.lap("root");
   return field;
 }
 
