@@ -293,6 +293,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     std::vector<std::int32_t> sample_arc, vertex_arc;  // local arc index
     std::vector<std::pair<VertexKey, std::int32_t>> ends;  // local arc
     std::vector<std::pair<std::int32_t, std::int64_t>> links;  // local arc, label (0 outside, p pocket)
+    std::vector<std::int32_t> circled, exposed;  // atoms with a circle; atoms with an exposed arc
   };
   std::vector<ChunkArcs> chunk_arcs(static_cast<std::size_t>(chunks));
   // A vertex of the SAS: its three atoms (ascending) and the side of their centres' plane it lies on.
@@ -327,6 +328,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         const Vec3 axis = atoms[j].position - atom.position;
         const double d = norm(axis);
         if (d >= reach_i + reach_j || d <= std::abs(reach_i - reach_j) || d == 0) continue;
+        out.circled.push_back(index), out.circled.push_back(j);
         const double along = (d * d + reach_i * reach_i - reach_j * reach_j) / (2 * d);
         const double circle_radius = std::sqrt(std::max(0.0, reach_i * reach_i - along * along));
         const Vec3 unit_axis = (1 / d) * axis;
@@ -397,6 +399,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         }
         const auto steps = std::max<std::int64_t>(8, ceil_int(kTurn * circle_radius / (0.5 * h)));
         const double step_angle = kTurn / static_cast<double>(steps);
+        if (!gaps.empty()) out.exposed.push_back(index), out.exposed.push_back(j);
         for (const Gap& gap : gaps) {
           const auto arc = static_cast<std::int32_t>(out.arcs++);
           linked.clear();
@@ -428,6 +431,16 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     }
   });
   clock.lap("arcs");
+  // Whether the radial projections onto an atom's sphere need testing: not when the sphere meets another
+  // in a circle and none of its circles has an exposed arc. Then nothing of it is exposed (an exposed
+  // part short of the whole sphere is bounded by exposed arcs), and that is true of about a third of a
+  // protein's atoms.
+  std::vector<std::uint8_t> face(atoms.size(), 0);  // bit 1: some circle; bit 2: some exposed arc
+  for (auto& part : chunk_arcs) {
+    for (const std::int32_t a : part.circled) face[static_cast<std::size_t>(a)] |= 1;
+    for (const std::int32_t a : part.exposed) face[static_cast<std::size_t>(a)] |= 2;
+    std::vector<std::int32_t>().swap(part.circled), std::vector<std::int32_t>().swap(part.exposed);
+  }
   // Components of outside, pockets and arcs: nodes 0 (outside), 1..pockets, then the arcs in order.
   std::vector<std::int64_t> arc_start(static_cast<std::size_t>(chunks) + 1, 0);
   for (std::int64_t c = 0; c < chunks; ++c) arc_start[static_cast<std::size_t>(c) + 1] = arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
@@ -480,6 +493,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     auto& out = chunk_centres[static_cast<std::size_t>(chunk)];
     std::int32_t hint = -1;
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
+      if (face[static_cast<std::size_t>(index)] == 1) continue;  // buried
       const auto& atom = atoms[index];
       const double outer = reach[index], inner = outer - h;
       // In crevices narrower than a grid step no sample is outside the SAS, yet a probe fits: every
@@ -538,11 +552,18 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   // In blocks of 8³ samples, block by block along a Morton curve, so that consecutive centres touch the same
   // part of the grid (the order does not change the field: lowering is a min).
   auto block_key = [](const Vec3& c) {
+    // The low 20 bits of b, moved to every third bit.
+    auto spread = [](std::uint64_t b) {
+      b &= 0xfffff;
+      b = (b | b << 32) & 0x1f00000000ffffu;
+      b = (b | b << 16) & 0x1f0000ff0000ffu;
+      b = (b | b << 8) & 0x100f00f00f00f00fu;
+      b = (b | b << 4) & 0x10c30c30c30c30c3u;
+      b = (b | b << 2) & 0x1249249249249249u;
+      return b;
+    };
     std::uint64_t key = 0;
-    for (int d = 0; d < 3; ++d) {
-      const auto b = static_cast<std::uint64_t>(std::max(0.0, c[d]) / 8);
-      for (int bit = 0; bit < 20; ++bit) key |= ((b >> bit) & 1u) << (3 * bit + d);
-    }
+    for (int d = 0; d < 3; ++d) key |= spread(static_cast<std::uint64_t>(std::max(0.0, c[d]) / 8)) << d;
     return key;
   };
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(centres.size());
