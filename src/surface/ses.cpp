@@ -191,6 +191,49 @@ class Components {
   std::vector<std::int64_t> parent_;
 };
 
+// The part of a circle (centre + ρ (cos θ u + sin θ v)) inside another enlarged sphere: θ with
+// 2ρ m cos(θ - φ) < room, where (a, b) = m (cos φ, sin φ); `spread` = 2ρm, and -spread < room < spread.
+struct CoverTerm {
+  double a, b, room, spread;
+  std::int32_t atom;
+};
+
+// A monotone function of the angle of direction (x, y) in [0, 2π), with values in [0, 4): angles
+// compared without trigonometry.
+inline double pseudo_angle(double x, double y) {
+  const double p = y / (std::abs(x) + std::abs(y));
+  if (x < 0) return 2 - p;
+  return y >= 0 ? p : 4 + p;
+}
+
+// Whether the parts in `terms` cover the whole circle with a margin far beyond rounding (1e-9 rad);
+// false when they do not, or might not. `spans` is scratch.
+inline bool certainly_covered(const std::vector<CoverTerm>& terms, std::vector<std::array<double, 2>>& spans) {
+  constexpr double kMargin = 1e-9;
+  spans.clear();
+  for (const CoverTerm& t : terms) {
+    const double cosine = t.room / t.spread;  // of the exposed half-width: covered is θ - φ in (half, 2π - half)
+    if (cosine < -1 + 1e-12) continue;       // a sliver (or nothing): leaving it out only makes the answer "unsure"
+    const double sine = std::sqrt(std::max(0.0, (1 - cosine) * (1 + cosine)));
+    const double m = std::sqrt(t.a * t.a + t.b * t.b), ca = t.a / m, sa = t.b / m;
+    const double start = pseudo_angle(ca * cosine - sa * sine, sa * cosine + ca * sine);
+    const double end = pseudo_angle(ca * cosine + sa * sine, sa * cosine - ca * sine);
+    // Past a full turn? The covered length is more than π exactly when cosine > 0.
+    const bool wraps = cosine > 0 ? end <= start : end < start;
+    spans.push_back({start, wraps ? end + 4 : end});
+  }
+  if (spans.empty()) return false;
+  std::sort(spans.begin(), spans.end());
+  const double first = spans.front()[0];
+  double reached = spans.front()[1];
+  for (const auto& span : spans) reached = std::max(reached, span[1] - 4);  // wrapped parts cover the start again
+  for (std::size_t c = 1; c < spans.size(); ++c) {
+    if (spans[c][0] > reached - kMargin) return false;
+    reached = std::max(reached, spans[c][1]);
+  }
+  return reached > first + 4 + kMargin;
+}
+
 // Probe centres on the SAS surface (see solvent_excluded_field), in grid coordinates; decides on the way
 // which pockets of `field` (labelled by flood_and_label_pockets) a probe reaches from outside, and
 // resolves them: 0 (probe centres) or +infinity.
@@ -316,6 +359,8 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
       std::int32_t from_atom, to_atom;
     };
     std::vector<Covering> coverings;
+    std::vector<CoverTerm> terms;
+    std::vector<std::array<double, 2>> spans;
     std::vector<Gap> gaps;
     std::vector<std::int64_t> linked;
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
@@ -351,7 +396,8 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
           buried = a * a + far * far < reach2[other] * (1 - 1e-12);
         }
         if (buried) continue;
-        coverings.clear();
+        terms.clear();
+        bool whole = false;
         for (auto n = neighbour_start[index]; n < neighbour_start[index + 1]; ++n) {
           const std::int32_t k = neighbours[static_cast<std::size_t>(n)];
           if (k == j) continue;
@@ -360,15 +406,21 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
           const double room = reach2[k] - (a * a + b * b + along_axis * along_axis) - circle_radius * circle_radius;
           const double spread = 2 * circle_radius * std::sqrt(a * a + b * b);
           if (room >= spread) {
-            coverings.assign(1, {0, kTurn, k});  // all of it (up to rounding: the test above missed it)
+            whole = true;  // all of it (up to rounding: the test above missed it)
             break;
           }
-          if (room > -spread) {
-            const double half = std::acos(room / spread);  // exposed: |θ - φ| <= half
-            double start = std::atan2(b, a) + half;
-            start -= kTurn * std::floor(start / kTurn);
-            coverings.push_back({start, 2 * (std::numbers::pi - half), k});
-          }
+          if (room > -spread) terms.push_back({a, b, room, spread, k});
+        }
+        // Most of the rest are covered by several spheres together: decided without trigonometry when
+        // the union covers the circle with room to spare (certainly_covered); the angles are computed,
+        // as before, only for the others.
+        if (whole || certainly_covered(terms, spans)) continue;
+        coverings.clear();
+        for (const CoverTerm& t : terms) {
+          const double half = std::acos(t.room / t.spread);  // exposed: |θ - φ| <= half
+          double start = std::atan2(t.b, t.a) + half;
+          start -= kTurn * std::floor(start / kTurn);
+          coverings.push_back({start, 2 * (std::numbers::pi - half), t.atom});
         }
         if (coverings.size() == 1 && coverings.front().length >= kTurn) continue;
         auto point_at = [&](double angle) { return centre + circle_radius * (std::cos(angle) * u + std::sin(angle) * v); };
