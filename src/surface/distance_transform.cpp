@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "parallel.hpp"
 #include "spheremap/surface/grid.hpp"
@@ -13,6 +14,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // One line: d[q] = min_p (q - p)² + f[p], by the lower envelope of the parabolas rooted at each p.
 // Envelope entry k: parabola v[k], with f[v[k]] + v[k]² in rooted[k], lowest from z[k] on. The
 // intersection that ends the popping is the new entry's z: one division per comparison, not two.
+// Zeros inside a run of zeros are left out: every sample outside the run is nearer to an end of it,
+// and the run's own samples are 0 (which is what the envelope gives them, the transform being exact).
 void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& z,
                     std::vector<double>& rooted) {
   v.resize(static_cast<std::size_t>(n));
@@ -21,6 +24,7 @@ void transform_line(const double* f, double* d, std::int64_t n, std::vector<std:
   std::int64_t k = -1;
   for (std::int64_t q = 0; q < n; ++q) {
     if (f[q] == kInfinity) continue;
+    if (f[q] == 0 && q > 0 && q + 1 < n && f[q - 1] == 0 && f[q + 1] == 0) continue;
     const double here = f[q] + static_cast<double>(q * q);
     double s = -kInfinity;
     while (k >= 0) {
@@ -42,7 +46,7 @@ void transform_line(const double* f, double* d, std::int64_t n, std::vector<std:
   for (std::int64_t q = 0; q < n; ++q) {
     while (z[j + 1] < static_cast<double>(q)) ++j;
     const double offset = static_cast<double>(q - v[j]);
-    d[q] = offset * offset + f[v[j]];
+    d[q] = f[q] == 0 ? 0.0 : offset * offset + f[v[j]];
   }
 }
 
@@ -76,16 +80,24 @@ void binary_line(const double* f, double* d, std::int64_t n) {
   }
 }
 
-// Transforms one line from `in` into `out`; false when nothing changes.
-bool transform_any_line(const double* in, double* out, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& z,
-                        std::vector<double>& rooted) {
-  switch (kind_of(in, n)) {
-    case LineKind::kTrivial: return false;
-    case LineKind::kBinary: binary_line(in, out, n); return true;
-    case LineKind::kGeneral: break;
+// Transforms one line from `in` into `out`: returns the range [first, end) of samples that may change
+// (out is written there only; first == end when none). Zeros before the first and after the last
+// nonzero value stay zero and only the nearest of each run can be anyone's nearest, so the transform
+// runs on what lies between them, which in a molecule's grid is often half the line or less.
+std::pair<std::int64_t, std::int64_t> transform_any_line(const double* in, double* out, std::int64_t n, std::vector<std::int64_t>& v,
+                                                         std::vector<double>& z, std::vector<double>& rooted) {
+  std::int64_t first = 0, end = n;
+  while (first < n && in[first] == 0) ++first;
+  if (first == n) return {0, 0};  // all zero
+  while (in[end - 1] == 0) --end;
+  first = std::max<std::int64_t>(0, first - 1), end = std::min(n, end + 1);
+  const std::int64_t length = end - first;
+  switch (kind_of(in + first, length)) {
+    case LineKind::kTrivial: return {0, 0};
+    case LineKind::kBinary: binary_line(in + first, out + first, length); break;
+    case LineKind::kGeneral: transform_line(in + first, out + first, length, v, z, rooted); break;
   }
-  transform_line(in, out, n, v, z, rooted);
-  return true;
+  return {first, end};
 }
 
 // Lines of one axis are gathered in blocks of this many neighbouring lines (contiguous in memory along
@@ -115,8 +127,8 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
     for (std::int64_t j = 0; j < ny; ++j) {
       T* row = values + k * plane + j * nx;
       for (std::int64_t q = 0; q < nx; ++q) s.in[q] = static_cast<double>(row[q]);
-      if (!transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.z, s.rooted)) continue;
-      for (std::int64_t q = 0; q < nx; ++q) row[q] = static_cast<T>(s.out[q]);
+      const auto [first, end] = transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.z, s.rooted);
+      for (std::int64_t q = first; q < end; ++q) row[q] = static_cast<T>(s.out[q]);
     }
   });
   // Axis 1 (stride nx) and axis 2 (stride nx * ny): kBlock neighbouring lines at a time.
@@ -130,8 +142,8 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
         for (std::int64_t q = 0; q < n; ++q)
           for (std::int64_t w = 0; w < width; ++w) s.in[w * n + q] = static_cast<double>(base[q * stride + w]);
         for (std::int64_t w = 0; w < width; ++w) {
-          if (!transform_any_line(s.in.data() + w * n, s.out.data(), n, s.v, s.z, s.rooted)) continue;
-          for (std::int64_t q = 0; q < n; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
+          const auto [first, end] = transform_any_line(s.in.data() + w * n, s.out.data(), n, s.v, s.z, s.rooted);
+          for (std::int64_t q = first; q < end; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
         }
       }
     });
