@@ -96,78 +96,6 @@ void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, do
 // samples that the lattice does not join to the border. Float holds these integers exactly up to 2^24.
 constexpr std::int64_t kMaximumPockets = (std::int64_t{1} << 23) - 2;
 
-// Scan-line flood fill: every sample holding `from` that is 6-connected to `seed` through such samples
-// becomes `to`. Memory for pending runs only.
-template <typename T>
-void flood_region(Grid3<T>& field, std::int64_t seed, T from, T to, std::vector<std::int64_t>& pending) {
-  const auto [nx, ny, nz] = field.size;
-  T* values = field.values.data();
-  if (values[seed] != from) return;
-  pending.push_back(seed);
-  while (!pending.empty()) {
-    const std::int64_t s = pending.back();
-    pending.pop_back();
-    if (values[s] != from) continue;
-    const std::int64_t i = s % nx, row = s - i, j = (s / nx) % ny, k = s / (nx * ny);
-    std::int64_t left = i, right = i;
-    while (left > 0 && values[row + left - 1] == from) --left;
-    while (right + 1 < nx && values[row + right + 1] == from) ++right;
-    for (std::int64_t x = left; x <= right; ++x) values[row + x] = to;
-    const std::int64_t neighbours[4] = {j > 0 ? row - nx : -1, j + 1 < ny ? row + nx : -1, k > 0 ? row - nx * ny : -1,
-                                        k + 1 < nz ? row + nx * ny : -1};
-    for (const auto other : neighbours) {
-      if (other < 0) continue;
-      for (std::int64_t x = left; x <= right; ++x)
-        if (values[other + x] == from && (x == left || values[other + x - 1] != from)) pending.push_back(other + x);
-    }
-  }
-}
-
-// Outside samples connected to the grid border through the lattice become 0; every other 6-connected set
-// of outside samples (a pocket as far as the lattice can tell) gets its own label (see kMaximumPockets;
-// beyond that many, pockets are +infinity: never carved). Returns the number of pockets.
-template <typename T>
-std::int64_t flood_and_label_pockets(Grid3<T>& field) {
-  const auto [nx, ny, nz] = field.size;
-  const T unreached = static_cast<T>(kUnreached);
-  std::vector<std::int64_t> pending;
-  for (std::int64_t k = 0; k < nz; ++k)
-    for (std::int64_t j = 0; j < ny; ++j) {
-      const std::int64_t row = field.index(0, j, k);
-      if (k == 0 || k == nz - 1 || j == 0 || j == ny - 1) {
-        for (std::int64_t i = 0; i < nx; ++i) flood_region(field, row + i, unreached, T(0), pending);
-      } else {
-        flood_region(field, row, unreached, T(0), pending);
-        flood_region(field, row + nx - 1, unreached, T(0), pending);
-      }
-    }
-  std::int64_t pockets = 0;
-  for (std::int64_t s = 0; s < field.count(); ++s)
-    if (field.values[static_cast<std::size_t>(s)] == unreached) {
-      const T label = pockets < kMaximumPockets ? static_cast<T>(pockets + 2) : std::numeric_limits<T>::infinity();
-      pockets += pockets < kMaximumPockets;
-      flood_region(field, s, unreached, label, pending);
-    }
-  return pockets;
-}
-
-// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
-// the SAS, or a pocket beyond kMaximumPockets).
-template <typename T>
-inline std::int64_t label_of(T value) {
-  if (value == T(0)) return 0;
-  if (!(value < std::numeric_limits<T>::infinity())) return -1;
-  return static_cast<std::int64_t>(value) - 1;
-}
-
-// A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
-// plane of their centres it lies on (the two such positions are mirror images through that plane).
-struct VertexKey {
-  std::array<std::int32_t, 3> atoms;
-  std::int32_t side;
-  auto operator<=>(const VertexKey&) const = default;
-};
-
 // Union-find on integer nodes, smaller root wins (deterministic).
 class Components {
  public:
@@ -190,6 +118,125 @@ class Components {
  private:
   std::vector<std::int64_t> parent_;
 };
+
+// Outside samples connected to the grid border through the lattice become 0; every other 6-connected set
+// of outside samples (a pocket as far as the lattice can tell) gets its own label, pockets numbered in
+// the order of their first sample (see kMaximumPockets; beyond that many, pockets are +infinity: never
+// carved). Returns the number of pockets.
+//
+// By runs: the outside samples of each row form runs, found plane by plane in parallel; runs that touch
+// (the same row in adjacent planes, or adjacent rows of a plane, with overlapping spans) are joined by
+// union-find (smaller root wins); each set's labels are then written back plane by plane. The sets and
+// their first samples do not depend on the order of the joins, so neither do the labels.
+template <typename T>
+std::int64_t flood_and_label_pockets(Grid3<T>& field, int threads) {
+  const auto [nx, ny, nz] = field.size;
+  const T unreached = static_cast<T>(kUnreached);
+  const std::int64_t plane = nx * ny;
+  struct Run {
+    std::int32_t i0, i1;  // [i0, i1] along axis 0
+  };
+  // plane_runs[k]: the runs of plane k, row by row, each row's in increasing i; row_start[k * (ny + 1) + j]:
+  // index of row j's first run in plane k.
+  std::vector<std::vector<Run>> plane_runs(static_cast<std::size_t>(nz));
+  std::vector<std::int64_t> row_start(static_cast<std::size_t>(nz * (ny + 1)));
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    auto& runs = plane_runs[static_cast<std::size_t>(k)];
+    std::int64_t* starts = row_start.data() + k * (ny + 1);
+    for (std::int64_t j = 0; j < ny; ++j) {
+      starts[j] = static_cast<std::int64_t>(runs.size());
+      const T* values = field.values.data() + k * plane + j * nx;
+      for (std::int64_t i = 0; i < nx;) {
+        if (values[i] != unreached) {
+          ++i;
+          continue;
+        }
+        const std::int64_t i0 = i;
+        while (i < nx && values[i] == unreached) ++i;
+        runs.push_back({static_cast<std::int32_t>(i0), static_cast<std::int32_t>(i - 1)});
+      }
+    }
+    starts[ny] = static_cast<std::int64_t>(runs.size());
+  });
+  std::vector<std::int64_t> plane_first(static_cast<std::size_t>(nz) + 1, 0);  // global index of each plane's first run
+  for (std::int64_t k = 0; k < nz; ++k) plane_first[static_cast<std::size_t>(k) + 1] = plane_first[static_cast<std::size_t>(k)] + static_cast<std::int64_t>(plane_runs[static_cast<std::size_t>(k)].size());
+  const std::int64_t total = plane_first.back();
+  if (total == 0) return 0;
+  Components sets(static_cast<std::size_t>(total));
+  // Joins the runs of row (j, k) with those of row (j', k') they overlap (both lists increasing in i).
+  auto join_rows = [&](std::int64_t k, std::int64_t j, std::int64_t k2, std::int64_t j2) {
+    const auto& a = plane_runs[static_cast<std::size_t>(k)];
+    const auto& b = plane_runs[static_cast<std::size_t>(k2)];
+    std::int64_t x = row_start[static_cast<std::size_t>(k * (ny + 1) + j)], x_end = row_start[static_cast<std::size_t>(k * (ny + 1) + j + 1)];
+    std::int64_t y = row_start[static_cast<std::size_t>(k2 * (ny + 1) + j2)], y_end = row_start[static_cast<std::size_t>(k2 * (ny + 1) + j2 + 1)];
+    while (x < x_end && y < y_end) {
+      const Run& r = a[static_cast<std::size_t>(x)];
+      const Run& q = b[static_cast<std::size_t>(y)];
+      if (r.i0 <= q.i1 && q.i0 <= r.i1) sets.join(plane_first[static_cast<std::size_t>(k)] + x, plane_first[static_cast<std::size_t>(k2)] + y);
+      if (r.i1 < q.i1) ++x;
+      else ++y;
+    }
+  };
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      if (j > 0) join_rows(k, j, k, j - 1);
+      if (k > 0) join_rows(k, j, k - 1, j);
+    }
+  // Per set (at its root): whether it reaches the border, and its first sample.
+  std::vector<std::uint8_t> border(static_cast<std::size_t>(total), 0);
+  std::vector<std::int64_t> first_sample(static_cast<std::size_t>(total), std::numeric_limits<std::int64_t>::max());
+  std::vector<std::int64_t> root_of(static_cast<std::size_t>(total));
+  for (std::int64_t k = 0; k < nz; ++k) {
+    const auto& runs = plane_runs[static_cast<std::size_t>(k)];
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (auto x = row_start[static_cast<std::size_t>(k * (ny + 1) + j)]; x < row_start[static_cast<std::size_t>(k * (ny + 1) + j + 1)]; ++x) {
+        const Run& r = runs[static_cast<std::size_t>(x)];
+        const std::int64_t run = plane_first[static_cast<std::size_t>(k)] + x, root = sets.find(run);
+        root_of[static_cast<std::size_t>(run)] = root;
+        border[static_cast<std::size_t>(root)] |= k == 0 || k == nz - 1 || j == 0 || j == ny - 1 || r.i0 == 0 || r.i1 == nx - 1;
+        first_sample[static_cast<std::size_t>(root)] = std::min(first_sample[static_cast<std::size_t>(root)], k * plane + j * nx + r.i0);
+      }
+  }
+  // Pockets numbered by first sample.
+  std::vector<std::pair<std::int64_t, std::int64_t>> pocket_roots;  // first sample, root
+  for (std::int64_t run = 0; run < total; ++run)
+    if (root_of[static_cast<std::size_t>(run)] == run && !border[static_cast<std::size_t>(run)]) pocket_roots.push_back({first_sample[static_cast<std::size_t>(run)], run});
+  std::sort(pocket_roots.begin(), pocket_roots.end());
+  std::vector<T> value_of_root(static_cast<std::size_t>(total), T(0));
+  for (std::size_t p = 0; p < pocket_roots.size(); ++p)
+    value_of_root[static_cast<std::size_t>(pocket_roots[p].second)] =
+        static_cast<std::int64_t>(p) < kMaximumPockets ? static_cast<T>(p + 2) : std::numeric_limits<T>::infinity();
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    const auto& runs = plane_runs[static_cast<std::size_t>(k)];
+    for (std::int64_t j = 0; j < ny; ++j) {
+      T* values = field.values.data() + k * plane + j * nx;
+      for (auto x = row_start[static_cast<std::size_t>(k * (ny + 1) + j)]; x < row_start[static_cast<std::size_t>(k * (ny + 1) + j + 1)]; ++x) {
+        const Run& r = runs[static_cast<std::size_t>(x)];
+        const T value = value_of_root[static_cast<std::size_t>(root_of[static_cast<std::size_t>(plane_first[static_cast<std::size_t>(k)] + x)])];
+        std::fill(values + r.i0, values + r.i1 + 1, value);
+      }
+    }
+  });
+  return std::min<std::int64_t>(static_cast<std::int64_t>(pocket_roots.size()), kMaximumPockets);
+}
+
+// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
+// the SAS, or a pocket beyond kMaximumPockets).
+template <typename T>
+inline std::int64_t label_of(T value) {
+  if (value == T(0)) return 0;
+  if (!(value < std::numeric_limits<T>::infinity())) return -1;
+  return static_cast<std::int64_t>(value) - 1;
+}
+
+// A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
+// plane of their centres it lies on (the two such positions are mirror images through that plane).
+struct VertexKey {
+  std::array<std::int32_t, 3> atoms;
+  std::int32_t side;
+  auto operator<=>(const VertexKey&) const = default;
+};
+
 
 // The part of a circle (centre + ρ (cos θ u + sin θ v)) inside another enlarged sphere: θ with
 // 2ρ m cos(θ - φ) < room, where (a, b) = m (cos φ, sin φ); `spread` = 2ρm, and -spread < room < spread.
@@ -824,7 +871,7 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
   // probe reaches from outside count (as for MSMS's outer surface), unless cavities are carved too.
   mark_accessible_surface(field, atoms, probe, threads);
   clock.lap("accessible");
-  const std::int64_t pockets = flood_and_label_pockets(field);
+  const std::int64_t pockets = flood_and_label_pockets(field, threads);
   clock.lap("flood");
   // Which pockets a probe reaches through passages narrower than a step, and more probe centres, on the
   // SAS surface itself (found before the transform, while carving samples are exactly the zeros).
