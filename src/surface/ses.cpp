@@ -84,8 +84,14 @@ void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, do
           const std::int64_t i0 = std::max(i_first, ceil_int((a.position[0] - half - field.origin[0]) / h) - 1);
           const std::int64_t i1 = std::min(i_last, floor_int((a.position[0] + half - field.origin[0]) / h) + 1);
           T* values = field.values.data() + field.index(0, j, k);
-          for (std::int64_t i = i0; i <= i1; ++i)
-            if (squared_distance(field.point(i, j, k), a.position) < reach2) values[i] = inside;
+          // The test is monotone in |x - centre| even as rounded, so the samples that pass form an
+          // interval: found from both ends of the estimate, then filled.
+          auto inside_sphere = [&](std::int64_t i) { return squared_distance(field.point(i, j, k), a.position) < reach2; };
+          std::int64_t lo = i0, hi = i1;
+          while (lo <= i1 && !inside_sphere(lo)) ++lo;
+          if (lo > i1) continue;
+          while (!inside_sphere(hi)) --hi;
+          std::fill(values + lo, values + hi + 1, inside);
         }
     }
   });
