@@ -671,11 +671,25 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     for (int d = 0; d < 3; ++d) key |= spread(static_cast<std::uint64_t>(std::max(0.0, c[d]) / 8)) << d;
     return key;
   };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(centres.size());
-  for (std::size_t c = 0; c < centres.size(); ++c) order[c] = {block_key(centres[c]), static_cast<std::uint32_t>(c)};
-  std::sort(order.begin(), order.end());
+  // By key with a least-significant-digit radix sort (stable, so ties keep the chunks' order): linear,
+  // where a comparison sort of a million centres took a tenth of a second on one thread.
+  std::vector<std::uint64_t> keys(centres.size());
+  std::uint64_t largest = 0;
+  for (std::size_t c = 0; c < centres.size(); ++c) keys[c] = block_key(centres[c]), largest = std::max(largest, keys[c]);
+  std::vector<std::uint32_t> order(centres.size()), next(centres.size());
+  for (std::size_t c = 0; c < centres.size(); ++c) order[c] = static_cast<std::uint32_t>(c);
+  constexpr int kDigit = 11;
+  std::vector<std::size_t> digit_start((std::size_t{1} << kDigit) + 1);
+  for (int shift = 0; shift < 64 && (largest >> shift) != 0; shift += kDigit) {
+    std::fill(digit_start.begin(), digit_start.end(), 0);
+    const std::uint64_t mask = (std::uint64_t{1} << kDigit) - 1;
+    for (const std::uint32_t c : order) ++digit_start[((keys[c] >> shift) & mask) + 1];
+    for (std::size_t d = 1; d < digit_start.size(); ++d) digit_start[d] += digit_start[d - 1];
+    for (const std::uint32_t c : order) next[digit_start[(keys[c] >> shift) & mask]++] = c;
+    order.swap(next);
+  }
   std::vector<Vec3> sorted(centres.size());
-  for (std::size_t c = 0; c < centres.size(); ++c) sorted[c] = centres[order[c].second];
+  for (std::size_t c = 0; c < centres.size(); ++c) sorted[c] = centres[order[c]];
   return sorted;
 }
 
