@@ -414,6 +414,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     std::vector<Covering> coverings;
     std::vector<CoverTerm> terms;
     std::vector<std::array<double, 2>> spans;
+    std::vector<std::int32_t> common;
     std::vector<Gap> gaps;
     std::vector<std::int64_t> linked;
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
@@ -439,10 +440,17 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         // are the coordinates of centre - c_k in the circle's plane; a whole circle inside k is skipped.
         // Most circles of a protein are buried: skip the circle when one enlarged sphere holds all of it
         // (its farthest point from that sphere's centre is inside); only then are the intervals computed.
+        // Only a sphere overlapping both can cover a point of the circle: the neighbours common to
+        // index and j (both lists ascending), about half of index's.
+        common.clear();
+        for (auto x = neighbour_start[index], y = neighbour_start[j]; x < neighbour_start[index + 1] && y < neighbour_start[j + 1];) {
+          const std::int32_t p = neighbours[static_cast<std::size_t>(x)], q = neighbours[static_cast<std::size_t>(y)];
+          if (p == q) common.push_back(p);
+          x += p <= q, y += q <= p;
+        }
         bool buried = false;
-        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1] && !buried; ++n) {
-          const std::int32_t other = neighbours[static_cast<std::size_t>(n)];
-          if (other == j) continue;
+        for (std::size_t n = 0; n < common.size() && !buried; ++n) {
+          const std::int32_t other = common[n];
           const Vec3 offset = atoms[other].position - centre;
           const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
           const double far = circle_radius + std::sqrt(b2);
@@ -451,9 +459,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         if (buried) continue;
         terms.clear();
         bool whole = false;
-        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1]; ++n) {
-          const std::int32_t k = neighbours[static_cast<std::size_t>(n)];
-          if (k == j) continue;
+        for (const std::int32_t k : common) {
           const Vec3 offset = centre - atoms[k].position;
           const double a = dot(offset, u), b = dot(offset, v), along_axis = dot(offset, unit_axis);
           const double room = reach2[k] - (a * a + b * b + along_axis * along_axis) - circle_radius * circle_radius;
