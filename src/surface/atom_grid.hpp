@@ -12,6 +12,12 @@
 
 namespace spheremap::detail {
 
+/// std::floor as an integer, for |x| < 2^62, without a libm call (no SSE4.1 rounding in a default build).
+inline std::int64_t floor_to_int(double x) {
+  const auto t = static_cast<std::int64_t>(x);
+  return static_cast<double>(t) > x ? t - 1 : t;
+}
+
 /// An atom's sphere, copied out of Atom (whose strings would spread the centres over memory).
 struct Sphere {
   Vec3 centre;
@@ -117,14 +123,14 @@ class AtomGrid {
   std::array<std::int64_t, 3> cell_index(const Vec3& p) const {
     std::array<std::int64_t, 3> c;
     for (int d = 0; d < 3; ++d)
-      c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[d] - lo_[d]) / cell_)), 0, n_[d] - 1);
+      c[d] = std::clamp<std::int64_t>(floor_to_int((p[d] - lo_[d]) / cell_), 0, n_[d] - 1);
     return c;
   }
   // The cells that meet the cube of half-width `reach` around p; false when there are none.
   bool cell_range(const Vec3& p, double reach, std::array<std::int64_t, 3>& first, std::array<std::int64_t, 3>& last) const {
     for (int d = 0; d < 3; ++d) {
-      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
-      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
+      first[d] = std::max<std::int64_t>(0, floor_to_int((p[d] - reach - lo_[d]) / cell_));
+      last[d] = std::min<std::int64_t>(n_[d] - 1, floor_to_int((p[d] + reach - lo_[d]) / cell_));
       if (first[d] > last[d]) return false;
     }
     return true;

@@ -80,6 +80,21 @@ void box_candidates(const AtomGrid& grid, const std::vector<Atom>& atoms, double
   });
 }
 
+// box_candidates for a box inside a larger one, from the larger one's candidates (a superset: the best
+// bound of the small box is at most the large one's, and its atoms come at least as near the large box).
+void sub_box_candidates(const std::vector<Candidate>& outer, const Vec3& lo, const Vec3& hi, std::vector<Candidate>& out) {
+  double bound = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : outer) bound = std::min(bound, farthest_in_box(lo, hi, c.sphere.centre) - c.sphere.radius);
+  const std::size_t begin = out.size();
+  for (const Candidate& c : outer) {
+    const double least = nearest_in_box(lo, hi, c.sphere.centre) - c.sphere.radius;
+    if (least <= bound + kSlack) out.push_back({c.sphere, least});
+  }
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end(), [](const Candidate& a, const Candidate& b) {
+    return a.least_gap < b.least_gap || (a.least_gap == b.least_gap && a.sphere.index < b.sphere.index);
+  });
+}
+
 }  // namespace
 
 void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
@@ -110,7 +125,7 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
     }
     auto cell_of = [&](const Vec3& p) {
       std::int64_t c[3];
-      for (int d = 0; d < 3; ++d) c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[d] - lo[d]) / side)), 0, cells[d] - 1);
+      for (int d = 0; d < 3; ++d) c[d] = std::clamp<std::int64_t>(detail::floor_to_int((p[d] - lo[d]) / side), 0, cells[d] - 1);
       return c[0] + cells[0] * (c[1] + cells[1] * c[2]);
     };
     // slot[cell]: -1 without vertices; then the cell's rank among the cells with vertices.
@@ -123,30 +138,60 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
     std::vector<std::int64_t> used;
     for (std::size_t c = 0; c < slot.size(); ++c)
       if (slot[c] == 0) slot[c] = static_cast<std::int32_t>(used.size()), used.push_back(static_cast<std::int64_t>(c));
-    // Candidates of each used cell, in chunks of cells concatenated in order.
-    constexpr std::int64_t kCellsPerChunk = 256;
-    const std::int64_t cell_chunks = (static_cast<std::int64_t>(used.size()) + kCellsPerChunk - 1) / kCellsPerChunk;
-    std::vector<std::vector<Candidate>> chunk_candidates(static_cast<std::size_t>(cell_chunks));
-    std::vector<std::int64_t> candidate_start(used.size() + 1, 0);
-    detail::parallel_chunks(cell_chunks, threads, [&](std::int64_t chunk, int) {
+    // Candidates of each used cell, from those of its parent (the cell of twice the side holding it), which
+    // come from the atom grid: cells grouped by parent, groups in chunks, chunks concatenated in order.
+    auto box_of = [&](std::int64_t c, double box_side, std::int64_t per_row, std::int64_t per_plane) {
+      const std::int64_t index[3] = {c % per_row, (c / per_row) % per_plane, c / (per_row * per_plane)};
+      std::pair<Vec3, Vec3> box;
+      for (int d = 0; d < 3; ++d) {
+        box.first[d] = lo[d] + box_side * static_cast<double>(index[d]);
+        box.second[d] = box.first[d] + box_side;
+      }
+      return box;
+    };
+    const std::int64_t parent_row = (cells[0] + 1) / 2, parent_plane = (cells[1] + 1) / 2;
+    std::vector<std::pair<std::int64_t, std::uint32_t>> by_parent(used.size());  // parent, child rank
+    for (std::size_t u = 0; u < used.size(); ++u) {
+      const std::int64_t c = used[u], x = c % cells[0], y = (c / cells[0]) % cells[1], z = c / (cells[0] * cells[1]);
+      by_parent[u] = {x / 2 + parent_row * (y / 2 + parent_plane * (z / 2)), static_cast<std::uint32_t>(u)};
+    }
+    std::sort(by_parent.begin(), by_parent.end());
+    std::vector<std::size_t> group_start;  // groups of children with the same parent
+    for (std::size_t g = 0; g < by_parent.size(); ++g)
+      if (g == 0 || by_parent[g].first != by_parent[g - 1].first) group_start.push_back(g);
+    group_start.push_back(by_parent.size());
+    constexpr std::int64_t kGroupsPerChunk = 64;
+    const auto groups = static_cast<std::int64_t>(group_start.size()) - 1;
+    const std::int64_t group_chunks = (groups + kGroupsPerChunk - 1) / kGroupsPerChunk;
+    std::vector<std::vector<Candidate>> chunk_candidates(static_cast<std::size_t>(group_chunks));
+    std::vector<std::int64_t> candidate_begin(used.size()), candidate_end(used.size());  // within the chunk, then global
+    std::vector<std::int64_t> chunk_of_child(used.size());
+    detail::parallel_chunks(group_chunks, threads, [&](std::int64_t chunk, int) {
       auto& out = chunk_candidates[static_cast<std::size_t>(chunk)];
-      const std::int64_t end = std::min<std::int64_t>(static_cast<std::int64_t>(used.size()), (chunk + 1) * kCellsPerChunk);
-      for (std::int64_t u = chunk * kCellsPerChunk; u < end; ++u) {
-        const std::int64_t c = used[static_cast<std::size_t>(u)];
-        const std::int64_t index[3] = {c % cells[0], (c / cells[0]) % cells[1], c / (cells[0] * cells[1])};
-        Vec3 box_lo, box_hi;
-        for (int d = 0; d < 3; ++d) {
-          box_lo[d] = lo[d] + side * static_cast<double>(index[d]);
-          box_hi[d] = box_lo[d] + side;
+      std::vector<Candidate> parent;
+      for (std::int64_t g = chunk * kGroupsPerChunk; g < std::min(groups, (chunk + 1) * kGroupsPerChunk); ++g) {
+        const auto [parent_lo, parent_hi] = box_of(by_parent[group_start[static_cast<std::size_t>(g)]].first, 2 * side, parent_row, parent_plane);
+        parent.clear();
+        box_candidates(grid, atoms, largest_radius, parent_lo, parent_hi, parent);
+        for (auto m = group_start[static_cast<std::size_t>(g)]; m < group_start[static_cast<std::size_t>(g) + 1]; ++m) {
+          const std::uint32_t u = by_parent[m].second;
+          const auto [box_lo, box_hi] = box_of(used[u], side, cells[0], cells[1]);
+          candidate_begin[u] = static_cast<std::int64_t>(out.size());
+          sub_box_candidates(parent, box_lo, box_hi, out);
+          candidate_end[u] = static_cast<std::int64_t>(out.size());
+          chunk_of_child[u] = chunk;
         }
-        const std::size_t before = out.size();
-        box_candidates(grid, atoms, largest_radius, box_lo, box_hi, out);
-        candidate_start[static_cast<std::size_t>(u) + 1] = static_cast<std::int64_t>(out.size() - before);
       }
     });
-    for (std::size_t u = 0; u < used.size(); ++u) candidate_start[u + 1] += candidate_start[u];
+    std::vector<std::int64_t> chunk_offset(static_cast<std::size_t>(group_chunks) + 1, 0);
+    for (std::int64_t c = 0; c < group_chunks; ++c)
+      chunk_offset[static_cast<std::size_t>(c) + 1] = chunk_offset[static_cast<std::size_t>(c)] + static_cast<std::int64_t>(chunk_candidates[static_cast<std::size_t>(c)].size());
+    for (std::size_t u = 0; u < used.size(); ++u) {
+      const std::int64_t offset = chunk_offset[static_cast<std::size_t>(chunk_of_child[u])];
+      candidate_begin[u] += offset, candidate_end[u] += offset;
+    }
     std::vector<Candidate> candidates;
-    candidates.reserve(static_cast<std::size_t>(candidate_start.back()));
+    candidates.reserve(static_cast<std::size_t>(chunk_offset.back()));
     for (auto& part : chunk_candidates) candidates.insert(candidates.end(), part.begin(), part.end()), std::vector<Candidate>().swap(part);
     detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
       const auto [first, end] = chunk_range(chunk);
@@ -155,7 +200,7 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
         const auto u = static_cast<std::size_t>(slot[static_cast<std::size_t>(cell_of(p))]);
         double best = std::numeric_limits<double>::infinity();
         std::int32_t chosen = -1;
-        for (auto m = candidate_start[u]; m < candidate_start[u + 1]; ++m) {
+        for (auto m = candidate_begin[u]; m < candidate_end[u]; ++m) {
           const Candidate& c = candidates[static_cast<std::size_t>(m)];
           // The rest cannot come nearer (nor tie: the slack keeps rounding on the safe side).
           if (c.least_gap > best + kSlack) break;
