@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -88,7 +89,7 @@ template <typename T>
 class Contour {
  public:
   Contour(const Grid3<T>& field, double level, int threads, double minimum_fraction)
-      : field_(field), level_(level), minimum_fraction_(minimum_fraction), threads_(detail::surface_threads(threads)), nx_(field.size[0]), ny_(field.size[1]),
+      : field_(field), level_(level), threshold_(threshold_for(level)), minimum_fraction_(minimum_fraction), threads_(detail::surface_threads(threads)), nx_(field.size[0]), ny_(field.size[1]),
         nz_(field.size[2]), plane_(nx_ * ny_) {}
 
   Mesh run() {
@@ -112,7 +113,7 @@ class Contour {
       std::int64_t vertices = 0, triangles = 0;
       for (std::int64_t s = 0; s < plane_; ++s) vertices += kBitCount[planes.mask[0][s]];
       if (k + 1 < nz_)
-        for_cells(k, planes.sign[0], planes.sign[1], [&](std::int64_t, std::int64_t, int mask) { triangles += cases[mask].triangles; });
+        for_cells(k, planes.sign[0], planes.sign[1], planes.cells, [&](std::int64_t, std::int64_t, int mask) { triangles += cases[mask].triangles; });
       vertex_start[k + 1] = vertices;
       triangle_start[k + 1] = triangles;
     });
@@ -141,7 +142,7 @@ class Contour {
         write_positions(k, planes.mask[0], vertex_start[k], mesh.positions);
         if (k + 1 < nz_) {
           std::int64_t next = triangle_start[k];
-          for_cells(k, planes.sign[0], planes.sign[1], [&](std::int64_t i, std::int64_t j, int mask) {
+          for_cells(k, planes.sign[0], planes.sign[1], planes.cells, [&](std::int64_t i, std::int64_t j, int mask) {
             const CellCase& cell = cases[mask];
             for (int t = 0; t < cell.triangles; ++t) {
               Triangle& out = mesh.triangles[static_cast<std::size_t>(next++)];
@@ -175,9 +176,18 @@ class Contour {
     std::array<std::vector<std::uint8_t>, 3> sign;
     std::array<std::vector<std::uint8_t>, 2> mask;
     std::array<std::vector<std::int64_t>, 2> first;
+    std::vector<std::uint8_t> cells;  // for_cells' row of cell masks
   };
 
-  bool inside(std::int64_t s) const { return static_cast<double>(field_.values[static_cast<std::size_t>(s)]) > level_; }
+  bool inside(std::int64_t s) const { return field_.values[static_cast<std::size_t>(s)] > threshold_; }
+
+  // The largest T at most `level`: for x in T, x > threshold exactly when double(x) > level (no T lies
+  // between it and level), and the comparison stays in T, which vectorizes.
+  static T threshold_for(double level) {
+    T t = static_cast<T>(level);
+    if (static_cast<double>(t) > level) t = std::nextafter(t, -std::numeric_limits<T>::infinity());
+    return t;
+  }
 
   // Rows (j, k) holding an inside sample; everything else is skipped.
   void find_active_rows() {
@@ -218,12 +228,17 @@ class Contour {
         std::memset(row, 0, static_cast<std::size_t>(nx_));
         continue;
       }
+      // Locals: writes through a byte pointer could alias the members, which would stop vectorization.
       const T* values = field_.values.data() + k * plane_ + j * nx_;
-      for (std::int64_t i = 0; i < nx_; ++i) row[i] = static_cast<double>(values[i]) > level_;
+      const std::int64_t n = nx_;
+      const T threshold = threshold_;
+      for (std::int64_t i = 0; i < n; ++i) row[i] = values[i] > threshold;
     }
   }
 
-  // Bit e of mask[s]: the edge of type e from sample s of plane k crosses the level.
+  // Bit e of mask[s]: the edge of type e from sample s of plane k crosses the level. Only rows of active
+  // groups are filled (the others are zero); such a row has a row after it and a plane above it (the
+  // outer layer holds no inside sample), so only the last sample of the row needs bounds.
   void masks(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above,
              std::vector<std::uint8_t>& out) const {
     for (std::int64_t j = 0; j < ny_; ++j) {
@@ -232,17 +247,17 @@ class Contour {
         std::memset(row, 0, static_cast<std::size_t>(nx_));
         continue;
       }
-      for (std::int64_t i = 0; i < nx_; ++i) {
-        const std::uint8_t own = here[j * nx_ + i];
-        unsigned bits = 0;
-        for (int e = 0; e < 7; ++e) {
-          const auto& o = kEdgeOffset[e];
-          if (i + o[0] >= nx_ || j + o[1] >= ny_ || k + o[2] >= nz_) continue;
-          const auto& plane = o[2] ? above : here;
-          if (plane[(j + o[1]) * nx_ + i + o[0]] != own) bits |= 1u << e;
-        }
-        row[i] = static_cast<std::uint8_t>(bits);
+      const std::uint8_t *h0 = here.data() + j * nx_, *h1 = h0 + nx_, *a0 = above.data() + j * nx_, *a1 = a0 + nx_;
+      const std::int64_t n = nx_;  // a local: `row` could alias the members
+      // Edge types (kEdgeOffset): 0 +x, 1 +y, 2 +z, 3 +x+y, 4 +x+z, 5 +y+z, 6 +x+y+z.
+      for (std::int64_t i = 0; i + 1 < n; ++i) {
+        const std::uint8_t own = h0[i];
+        row[i] = static_cast<std::uint8_t>((h0[i + 1] ^ own) | (h1[i] ^ own) << 1 | (a0[i] ^ own) << 2 | (h1[i + 1] ^ own) << 3 |
+                                           (a0[i + 1] ^ own) << 4 | (a1[i] ^ own) << 5 | (a1[i + 1] ^ own) << 6);
       }
+      const std::int64_t i = n - 1;
+      const std::uint8_t own = h0[i];
+      row[i] = static_cast<std::uint8_t>((h1[i] ^ own) << 1 | (a0[i] ^ own) << 2 | (a1[i] ^ own) << 5);
     }
   }
 
@@ -281,20 +296,34 @@ class Contour {
   }
 
   // visit(i, j, mask) for every cell of layer k (between planes k and k + 1) with corners on both sides.
+  // The masks of a row of cells go to `cells` (nx - 1 of them, padded with zeros to a multiple of 8) in
+  // one vectorized pass; runs of 8 cells all outside (0) or all inside (255), most of them, are then
+  // passed over a word at a time.
   template <typename Visit>
-  void for_cells(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above, Visit&& visit) const {
+  void for_cells(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above, std::vector<std::uint8_t>& cells,
+                 Visit&& visit) const {
+    const std::int64_t n = nx_ - 1, words = (n + 7) / 8;  // locals: `cells` could alias the members
+    cells.resize(static_cast<std::size_t>(words * 8));
+    std::uint8_t* out = cells.data();
+    for (std::int64_t i = n; i < words * 8; ++i) out[i] = 0;
     for (std::int64_t j = 0; j + 1 < ny_; ++j) {
       if (!group_active(j, k)) continue;
       const std::uint8_t *h0 = here.data() + j * nx_, *h1 = h0 + nx_, *a0 = above.data() + j * nx_, *a1 = a0 + nx_;
-      for (std::int64_t i = 0; i + 1 < nx_; ++i) {
-        const int mask = h0[i] | h0[i + 1] << 1 | h1[i] << 2 | h1[i + 1] << 3 | a0[i] << 4 | a0[i + 1] << 5 | a1[i] << 6 | a1[i + 1] << 7;
-        if (mask != 0 && mask != 255) visit(i, j, mask);
+      for (std::int64_t i = 0; i < n; ++i)
+        out[i] = static_cast<std::uint8_t>(h0[i] | h0[i + 1] << 1 | h1[i] << 2 | h1[i + 1] << 3 | a0[i] << 4 | a0[i + 1] << 5 | a1[i] << 6 | a1[i + 1] << 7);
+      for (std::int64_t w = 0; w < words; ++w) {
+        std::uint64_t word;
+        std::memcpy(&word, out + 8 * w, sizeof word);
+        if (word == 0 || word == ~std::uint64_t{0}) continue;
+        for (std::int64_t i = 8 * w; i < 8 * w + 8; ++i)
+          if (out[i] != 0 && out[i] != 255) visit(i, j, static_cast<int>(out[i]));
       }
     }
   }
 
   const Grid3<T>& field_;
   double level_;
+  T threshold_;
   double minimum_fraction_;
   int threads_;
   std::int64_t nx_, ny_, nz_, plane_;

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "parallel.hpp"
 #include "spheremap/surface/grid.hpp"
@@ -11,46 +12,92 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // One line: d[q] = min_p (q - p)² + f[p], by the lower envelope of the parabolas rooted at each p.
-void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& z) {
+// Envelope entry k: parabola v[k], with f[v[k]] + v[k]² in rooted[k], lowest from z[k] on. The
+// intersection that ends the popping is the new entry's z: one division per comparison, not two.
+// Zeros inside a run of zeros are left out: every sample outside the run is nearer to an end of it,
+// and the run's own samples are 0 (which is what the envelope gives them, the transform being exact).
+void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& z,
+                    std::vector<double>& rooted) {
   v.resize(static_cast<std::size_t>(n));
   z.resize(static_cast<std::size_t>(n) + 1);
+  rooted.resize(static_cast<std::size_t>(n));
   std::int64_t k = -1;
   for (std::int64_t q = 0; q < n; ++q) {
     if (f[q] == kInfinity) continue;
+    if (f[q] == 0 && q > 0 && q + 1 < n && f[q - 1] == 0 && f[q + 1] == 0) continue;
+    const double here = f[q] + static_cast<double>(q * q);
+    double s = -kInfinity;
     while (k >= 0) {
-      const auto p = v[k];
-      const double s = ((f[q] + static_cast<double>(q * q)) - (f[p] + static_cast<double>(p * p))) / (2.0 * static_cast<double>(q - p));
-      if (s <= z[k]) {
-        --k;
-      } else {
-        break;
-      }
+      s = (here - rooted[k]) / (2.0 * static_cast<double>(q - v[k]));
+      if (s > z[k]) break;
+      --k;
     }
     ++k;
     v[k] = q;
-    z[k] = k == 0 ? -kInfinity : ((f[q] + static_cast<double>(q * q)) - (f[v[k - 1]] + static_cast<double>(v[k - 1] * v[k - 1]))) /
-                                     (2.0 * static_cast<double>(q - v[k - 1]));
-    z[k + 1] = kInfinity;
+    rooted[k] = here;
+    z[k] = k == 0 ? -kInfinity : s;
   }
   if (k < 0) {
     for (std::int64_t q = 0; q < n; ++q) d[q] = kInfinity;
     return;
   }
+  z[k + 1] = kInfinity;
   std::int64_t j = 0;
   for (std::int64_t q = 0; q < n; ++q) {
     while (z[j + 1] < static_cast<double>(q)) ++j;
     const double offset = static_cast<double>(q - v[j]);
-    d[q] = offset * offset + f[v[j]];
+    d[q] = f[q] == 0 ? 0.0 : offset * offset + f[v[j]];
   }
 }
 
-// A line needs no work when it is all zero (every sample is its own nearest) or all infinite.
-bool trivial_line(const double* f, std::int64_t n) {
-  const double first = f[0];
-  if (first != 0 && first != kInfinity) return false;
-  for (std::int64_t q = 1; q < n; ++q)
-    if (f[q] != first) return false;
-  return true;
+// What a line needs: nothing when it is all zero (every sample is its own nearest) or all infinite; two
+// sweeps when it holds only zeros and infinities (as the first axis of a 0/infinity start does); the
+// lower envelope otherwise.
+enum class LineKind { kTrivial, kBinary, kGeneral };
+
+LineKind kind_of(const double* f, std::int64_t n) {
+  bool zero = false, infinite = false;
+  for (std::int64_t q = 0; q < n; ++q) {
+    zero |= f[q] == 0;
+    infinite |= f[q] == kInfinity;
+    if (f[q] != 0 && f[q] != kInfinity) return LineKind::kGeneral;
+  }
+  return zero && infinite ? LineKind::kBinary : LineKind::kTrivial;
+}
+
+// A line of zeros and infinities (some of each): (distance to the nearest zero)², exactly as
+// transform_line gives it.
+void binary_line(const double* f, double* d, std::int64_t n) {
+  std::int64_t last = -1;  // the last zero at or before q
+  for (std::int64_t q = 0; q < n; ++q) {
+    if (f[q] == 0) last = q;
+    d[q] = last < 0 ? kInfinity : static_cast<double>((q - last) * (q - last));
+  }
+  last = -1;  // the first zero at or after q
+  for (std::int64_t q = n - 1; q >= 0; --q) {
+    if (f[q] == 0) last = q;
+    if (last >= 0) d[q] = std::min(d[q], static_cast<double>((last - q) * (last - q)));
+  }
+}
+
+// Transforms one line from `in` into `out`: returns the range [first, end) of samples that may change
+// (out is written there only; first == end when none). Zeros before the first and after the last
+// nonzero value stay zero and only the nearest of each run can be anyone's nearest, so the transform
+// runs on what lies between them, which in a molecule's grid is often half the line or less.
+std::pair<std::int64_t, std::int64_t> transform_any_line(const double* in, double* out, std::int64_t n, std::vector<std::int64_t>& v,
+                                                         std::vector<double>& z, std::vector<double>& rooted) {
+  std::int64_t first = 0, end = n;
+  while (first < n && in[first] == 0) ++first;
+  if (first == n) return {0, 0};  // all zero
+  while (in[end - 1] == 0) --end;
+  first = std::max<std::int64_t>(0, first - 1), end = std::min(n, end + 1);
+  const std::int64_t length = end - first;
+  switch (kind_of(in + first, length)) {
+    case LineKind::kTrivial: return {0, 0};
+    case LineKind::kBinary: binary_line(in + first, out + first, length); break;
+    case LineKind::kGeneral: transform_line(in + first, out + first, length, v, z, rooted); break;
+  }
+  return {first, end};
 }
 
 // Lines of one axis are gathered in blocks of this many neighbouring lines (contiguous in memory along
@@ -68,7 +115,7 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
   const std::int64_t plane = nx * ny;
   struct Scratch {
     std::vector<std::int64_t> v;
-    std::vector<double> z, in, out;
+    std::vector<double> z, rooted, in, out;
   };
   std::vector<Scratch> scratch(static_cast<std::size_t>(workers));
   const std::int64_t longest = std::max({nx, ny, nz});
@@ -80,9 +127,8 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
     for (std::int64_t j = 0; j < ny; ++j) {
       T* row = values + k * plane + j * nx;
       for (std::int64_t q = 0; q < nx; ++q) s.in[q] = static_cast<double>(row[q]);
-      if (trivial_line(s.in.data(), nx)) continue;
-      transform_line(s.in.data(), s.out.data(), nx, s.v, s.z);
-      for (std::int64_t q = 0; q < nx; ++q) row[q] = static_cast<T>(s.out[q]);
+      const auto [first, end] = transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.z, s.rooted);
+      for (std::int64_t q = first; q < end; ++q) row[q] = static_cast<T>(s.out[q]);
     }
   });
   // Axis 1 (stride nx) and axis 2 (stride nx * ny): kBlock neighbouring lines at a time.
@@ -96,10 +142,8 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
         for (std::int64_t q = 0; q < n; ++q)
           for (std::int64_t w = 0; w < width; ++w) s.in[w * n + q] = static_cast<double>(base[q * stride + w]);
         for (std::int64_t w = 0; w < width; ++w) {
-          const double* line = s.in.data() + w * n;
-          if (trivial_line(line, n)) continue;
-          transform_line(line, s.out.data(), n, s.v, s.z);
-          for (std::int64_t q = 0; q < n; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
+          const auto [first, end] = transform_any_line(s.in.data() + w * n, s.out.data(), n, s.v, s.z, s.rooted);
+          for (std::int64_t q = first; q < end; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
         }
       }
     });

@@ -8,18 +8,28 @@ namespace spheremap {
 namespace {
 
 // Builds a dictionary-coded text attribute; codes follow first appearance, so the output is deterministic.
+// Vertices come from few atoms (each atom's code is looked up once, then reused).
 class TextColumn {
  public:
-  void push(const std::string& value) {
-    auto [it, inserted] = index_.try_emplace(value, static_cast<std::int32_t>(attribute_.dictionary.size()));
-    if (inserted) attribute_.dictionary.push_back(value);
-    attribute_.codes.push_back(it->second);
+  explicit TextColumn(std::size_t atoms, std::size_t vertices) : code_of_atom_(atoms, -1) { attribute_.codes.reserve(vertices); }
+  // value_of(): the atom's text, asked for once per atom.
+  template <typename Value>
+  void push(std::size_t atom, Value&& value_of) {
+    std::int32_t& code = code_of_atom_[atom];
+    if (code < 0) {
+      std::string value = value_of();
+      auto [it, inserted] = index_.try_emplace(value, static_cast<std::int32_t>(attribute_.dictionary.size()));
+      if (inserted) attribute_.dictionary.push_back(std::move(value));
+      code = it->second;
+    }
+    attribute_.codes.push_back(code);
   }
   TextAttribute take() { return std::move(attribute_); }
 
  private:
   TextAttribute attribute_;
   std::unordered_map<std::string, std::int32_t> index_;
+  std::vector<std::int32_t> code_of_atom_;
 };
 
 }  // namespace
@@ -32,7 +42,8 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
   serial.reserve(atom_of.size());
   residue_number.reserve(atom_of.size());
   model.reserve(atom_of.size());
-  TextColumn name, element, residue_name, insertion_code, chain;
+  TextColumn name(atoms.size(), atom_of.size()), element(atoms.size(), atom_of.size()), residue_name(atoms.size(), atom_of.size()),
+      insertion_code(atoms.size(), atom_of.size()), chain(atoms.size(), atom_of.size());
   for (const std::int32_t index : atom_of) {
     if (index < 0 || static_cast<std::size_t>(index) >= atoms.size())
       throw std::invalid_argument("add_atom_provenance: an 'atomid' is not an index into the atoms");
@@ -40,11 +51,12 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
     serial.push_back(atom.serial);
     residue_number.push_back(atom.residue_number);
     model.push_back(atom.model);
-    name.push(atom.name);
-    element.push(atom.element);
-    residue_name.push(atom.residue_name);
-    insertion_code.push(atom.insertion_code == ' ' ? std::string() : std::string(1, atom.insertion_code));
-    chain.push(atom.chain);
+    const auto a = static_cast<std::size_t>(index);
+    name.push(a, [&] { return atom.name; });
+    element.push(a, [&] { return atom.element; });
+    residue_name.push(a, [&] { return atom.residue_name; });
+    insertion_code.push(a, [&] { return atom.insertion_code == ' ' ? std::string() : std::string(1, atom.insertion_code); });
+    chain.push(a, [&] { return atom.chain; });
   }
   mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
   mesh.integer_attributes["vertex_residue_number"] = std::move(residue_number);

@@ -2,11 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
+#ifdef SPHEREMAP_SURFACE_STAGE_TIMES
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#endif
 
 #include <fmt/format.h>
 
+#include "atom_grid.hpp"
 #include "parallel.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -14,114 +21,31 @@
 
 namespace spheremap {
 namespace {
-
-// Atoms bucketed in a dense grid of cubic cells (atoms of a cell in increasing index order).
-class AtomGrid {
+// Wall and CPU time of each step of the field on stderr, for profiling (BENCHMARKS.md, "Where the time
+// goes"): build with -DSPHEREMAP_SURFACE_STAGE_TIMES. Otherwise it does nothing.
+class StageClock {
  public:
-  AtomGrid(const std::vector<Atom>& atoms, double cell) : atoms_(atoms), cell_(cell) {
-    Vec3 hi = atoms.front().position;
-    lo_ = hi;
-    for (const auto& a : atoms)
-      for (int d = 0; d < 3; ++d) lo_[d] = std::min(lo_[d], a.position[d]), hi[d] = std::max(hi[d], a.position[d]);
-    for (int d = 0; d < 3; ++d) n_[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo_[d]) / cell_)) + 1;
-    start_.assign(static_cast<std::size_t>(n_[0] * n_[1] * n_[2] + 1), 0);
-    std::vector<std::int64_t> cell_of(atoms.size());
-    for (std::size_t a = 0; a < atoms.size(); ++a) {
-      const auto c = cell_index(atoms[a].position);
-      cell_of[a] = c[0] + n_[0] * (c[1] + n_[1] * c[2]);
-      ++start_[static_cast<std::size_t>(cell_of[a]) + 1];
-    }
-    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    members_.resize(atoms.size());
-    std::vector<std::int32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t a = 0; a < atoms.size(); ++a) members_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[a])]++)] = static_cast<std::int32_t>(a);
-  }
-
-  // Calls visit(atom index) for every atom in the cells that meet the cube of half-width `reach` around p
-  // (a superset of the atoms whose centre is within `reach`).
-  template <typename Visit>
-  void near(const Vec3& p, double reach, Visit&& visit) const {
-    std::array<std::int64_t, 3> first, last;
-    for (int d = 0; d < 3; ++d) {
-      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
-      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
-      if (first[d] > last[d]) return;
-    }
-    for (std::int64_t z = first[2]; z <= last[2]; ++z)
-      for (std::int64_t y = first[1]; y <= last[1]; ++y)
-        for (std::int64_t x = first[0]; x <= last[0]; ++x) {
-          const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
-          for (auto m = start_[c]; m < start_[c + 1]; ++m) visit(members_[static_cast<std::size_t>(m)]);
-        }
-  }
-
-  // The atom whose van der Waals sphere is nearest to p: smallest |p - centre| - radius, ties to the
-  // smallest index. `hint` (any atom, e.g. the answer for a nearby point) gives the first bound; the
-  // answer does not depend on it. Only cells that can hold a nearer sphere are visited.
-  [[nodiscard]] std::int32_t nearest_sphere(const Vec3& p, double largest_radius, std::int32_t hint) const {
-    std::int32_t chosen = hint;
-    double best = norm(p - atoms_[hint].position) - atoms_[hint].radius;
-    // An atom can only be nearer if its centre is within best + largest_radius of p.
-    const double reach = best + largest_radius;
-    std::array<std::int64_t, 3> first, last;
-    for (int d = 0; d < 3; ++d) {
-      first[d] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((p[d] - reach - lo_[d]) / cell_)));
-      last[d] = std::min<std::int64_t>(n_[d] - 1, static_cast<std::int64_t>(std::floor((p[d] + reach - lo_[d]) / cell_)));
-      if (first[d] > last[d]) return chosen;
-    }
-    auto gap_along = [&](int d, std::int64_t c) {
-      const double low = lo_[d] + cell_ * static_cast<double>(c), high = low + cell_;
-      return p[d] < low ? low - p[d] : p[d] > high ? p[d] - high : 0.0;
-    };
-    for (std::int64_t z = first[2]; z <= last[2]; ++z) {
-      const double gz = gap_along(2, z);
-      for (std::int64_t y = first[1]; y <= last[1]; ++y) {
-        const double gy = gap_along(1, y), gyz = gy * gy + gz * gz;
-        for (std::int64_t x = first[0]; x <= last[0]; ++x) {
-          const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
-          if (start_[c] == start_[c + 1]) continue;
-          const double gx = gap_along(0, x), bound = best + largest_radius;
-          if (gx * gx + gyz > bound * bound) continue;  // every centre in the cell is farther than bound
-          for (auto m = start_[c]; m < start_[c + 1]; ++m) {
-            const std::int32_t index = members_[static_cast<std::size_t>(m)];
-            const Atom& atom = atoms_[index];
-            const double limit = best + atom.radius;
-            if (squared_distance(p, atom.position) > limit * limit * (1 + 1e-12)) continue;  // gap > best for sure
-            const double gap = norm(p - atom.position) - atom.radius;
-            if (gap < best || (gap == best && index < chosen)) best = gap, chosen = index;
-          }
-        }
-      }
-    }
-    return chosen;
-  }
-
-  // Some atom in the cells around p (the first found), or atom 0.
-  [[nodiscard]] std::int32_t some_atom_near(const Vec3& p) const {
-    const auto home = cell_index(p);
-    for (std::int64_t r = 0; r <= 2; ++r)
-      for (std::int64_t z = std::max<std::int64_t>(0, home[2] - r); z <= std::min(n_[2] - 1, home[2] + r); ++z)
-        for (std::int64_t y = std::max<std::int64_t>(0, home[1] - r); y <= std::min(n_[1] - 1, home[1] + r); ++y)
-          for (std::int64_t x = std::max<std::int64_t>(0, home[0] - r); x <= std::min(n_[0] - 1, home[0] + r); ++x) {
-            const auto c = static_cast<std::size_t>(x + n_[0] * (y + n_[1] * z));
-            if (start_[c] < start_[c + 1]) return members_[static_cast<std::size_t>(start_[c])];
-          }
-    return 0;
+#ifdef SPHEREMAP_SURFACE_STAGE_TIMES
+  void lap(const char* step) {
+    const double wall = wall_seconds(), cpu = cpu_seconds();
+    std::fprintf(stderr, "surface stage %-12s %.3f s wall %.3f s CPU\n", step, wall - wall_, cpu - cpu_);
+    wall_ = wall, cpu_ = cpu;
   }
 
  private:
-  std::array<std::int64_t, 3> cell_index(const Vec3& p) const {
-    std::array<std::int64_t, 3> c;
-    for (int d = 0; d < 3; ++d)
-      c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[d] - lo_[d]) / cell_)), 0, n_[d] - 1);
-    return c;
+  static double wall_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+  static double cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
   }
-  const std::vector<Atom>& atoms_;
-  double cell_;
-  Vec3 lo_{};
-  std::array<std::int64_t, 3> n_{};
-  std::vector<std::int32_t> start_, members_;
+  double wall_ = wall_seconds(), cpu_ = cpu_seconds();
+#else
+  void lap(const char*) {}
+#endif
 };
+
+using detail::AtomGrid;
 
 // floor and ceil for |x| < 2^52 without a libm call (no SSE4.1 rounding in a default build).
 inline std::int64_t floor_int(double x) {
@@ -160,8 +84,14 @@ void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, do
           const std::int64_t i0 = std::max(i_first, ceil_int((a.position[0] - half - field.origin[0]) / h) - 1);
           const std::int64_t i1 = std::min(i_last, floor_int((a.position[0] + half - field.origin[0]) / h) + 1);
           T* values = field.values.data() + field.index(0, j, k);
-          for (std::int64_t i = i0; i <= i1; ++i)
-            if (squared_distance(field.point(i, j, k), a.position) < reach2) values[i] = inside;
+          // The test is monotone in |x - centre| even as rounded, so the samples that pass form an
+          // interval: found from both ends of the estimate, then filled.
+          auto inside_sphere = [&](std::int64_t i) { return squared_distance(field.point(i, j, k), a.position) < reach2; };
+          std::int64_t lo = i0, hi = i1;
+          while (lo <= i1 && !inside_sphere(lo)) ++lo;
+          if (lo > i1) continue;
+          while (!inside_sphere(hi)) --hi;
+          std::fill(values + lo, values + hi + 1, inside);
         }
     }
   });
@@ -171,78 +101,6 @@ void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, do
 // border through the lattice (0), or in pocket p = 1, 2, ... (value p + 1): a 6-connected set of outside
 // samples that the lattice does not join to the border. Float holds these integers exactly up to 2^24.
 constexpr std::int64_t kMaximumPockets = (std::int64_t{1} << 23) - 2;
-
-// Scan-line flood fill: every sample holding `from` that is 6-connected to `seed` through such samples
-// becomes `to`. Memory for pending runs only.
-template <typename T>
-void flood_region(Grid3<T>& field, std::int64_t seed, T from, T to, std::vector<std::int64_t>& pending) {
-  const auto [nx, ny, nz] = field.size;
-  T* values = field.values.data();
-  if (values[seed] != from) return;
-  pending.push_back(seed);
-  while (!pending.empty()) {
-    const std::int64_t s = pending.back();
-    pending.pop_back();
-    if (values[s] != from) continue;
-    const std::int64_t i = s % nx, row = s - i, j = (s / nx) % ny, k = s / (nx * ny);
-    std::int64_t left = i, right = i;
-    while (left > 0 && values[row + left - 1] == from) --left;
-    while (right + 1 < nx && values[row + right + 1] == from) ++right;
-    for (std::int64_t x = left; x <= right; ++x) values[row + x] = to;
-    const std::int64_t neighbours[4] = {j > 0 ? row - nx : -1, j + 1 < ny ? row + nx : -1, k > 0 ? row - nx * ny : -1,
-                                        k + 1 < nz ? row + nx * ny : -1};
-    for (const auto other : neighbours) {
-      if (other < 0) continue;
-      for (std::int64_t x = left; x <= right; ++x)
-        if (values[other + x] == from && (x == left || values[other + x - 1] != from)) pending.push_back(other + x);
-    }
-  }
-}
-
-// Outside samples connected to the grid border through the lattice become 0; every other 6-connected set
-// of outside samples (a pocket as far as the lattice can tell) gets its own label (see kMaximumPockets;
-// beyond that many, pockets are +infinity: never carved). Returns the number of pockets.
-template <typename T>
-std::int64_t flood_and_label_pockets(Grid3<T>& field) {
-  const auto [nx, ny, nz] = field.size;
-  const T unreached = static_cast<T>(kUnreached);
-  std::vector<std::int64_t> pending;
-  for (std::int64_t k = 0; k < nz; ++k)
-    for (std::int64_t j = 0; j < ny; ++j) {
-      const std::int64_t row = field.index(0, j, k);
-      if (k == 0 || k == nz - 1 || j == 0 || j == ny - 1) {
-        for (std::int64_t i = 0; i < nx; ++i) flood_region(field, row + i, unreached, T(0), pending);
-      } else {
-        flood_region(field, row, unreached, T(0), pending);
-        flood_region(field, row + nx - 1, unreached, T(0), pending);
-      }
-    }
-  std::int64_t pockets = 0;
-  for (std::int64_t s = 0; s < field.count(); ++s)
-    if (field.values[static_cast<std::size_t>(s)] == unreached) {
-      const T label = pockets < kMaximumPockets ? static_cast<T>(pockets + 2) : std::numeric_limits<T>::infinity();
-      pockets += pockets < kMaximumPockets;
-      flood_region(field, s, unreached, label, pending);
-    }
-  return pockets;
-}
-
-// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
-// the SAS, or a pocket beyond kMaximumPockets).
-template <typename T>
-inline std::int64_t label_of(T value) {
-  if (value == T(0)) return 0;
-  if (!(value < std::numeric_limits<T>::infinity())) return -1;
-  return static_cast<std::int64_t>(value) - 1;
-}
-
-// A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
-// plane of their centres it lies on (the two such positions are mirror images through that plane).
-struct VertexKey {
-  std::array<std::int32_t, 3> atoms;
-  std::int32_t side;
-  auto operator<=>(const VertexKey&) const = default;
-};
 
 // Union-find on integer nodes, smaller root wins (deterministic).
 class Components {
@@ -267,6 +125,168 @@ class Components {
   std::vector<std::int64_t> parent_;
 };
 
+// Outside samples connected to the grid border through the lattice become 0; every other 6-connected set
+// of outside samples (a pocket as far as the lattice can tell) gets its own label, pockets numbered in
+// the order of their first sample (see kMaximumPockets; beyond that many, pockets are +infinity: never
+// carved). Returns the number of pockets.
+//
+// By runs: the outside samples of each row form runs, found plane by plane in parallel; runs that touch
+// (the same row in adjacent planes, or adjacent rows of a plane, with overlapping spans) are joined by
+// union-find (smaller root wins); each set's labels are then written back plane by plane. The sets and
+// their first samples do not depend on the order of the joins, so neither do the labels.
+template <typename T>
+std::int64_t flood_and_label_pockets(Grid3<T>& field, int threads) {
+  const auto [nx, ny, nz] = field.size;
+  const T unreached = static_cast<T>(kUnreached);
+  const std::int64_t plane = nx * ny;
+  struct Run {
+    std::int32_t i0, i1;  // [i0, i1] along axis 0
+  };
+  // plane_runs[k]: the runs of plane k, row by row, each row's in increasing i; row_start[k * (ny + 1) + j]:
+  // index of row j's first run in plane k.
+  std::vector<std::vector<Run>> plane_runs(static_cast<std::size_t>(nz));
+  std::vector<std::int64_t> row_start(static_cast<std::size_t>(nz * (ny + 1)));
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    auto& runs = plane_runs[static_cast<std::size_t>(k)];
+    std::int64_t* starts = row_start.data() + k * (ny + 1);
+    for (std::int64_t j = 0; j < ny; ++j) {
+      starts[j] = static_cast<std::int64_t>(runs.size());
+      const T* values = field.values.data() + k * plane + j * nx;
+      for (std::int64_t i = 0; i < nx;) {
+        if (values[i] != unreached) {
+          ++i;
+          continue;
+        }
+        const std::int64_t i0 = i;
+        while (i < nx && values[i] == unreached) ++i;
+        runs.push_back({static_cast<std::int32_t>(i0), static_cast<std::int32_t>(i - 1)});
+      }
+    }
+    starts[ny] = static_cast<std::int64_t>(runs.size());
+  });
+  std::vector<std::int64_t> plane_first(static_cast<std::size_t>(nz) + 1, 0);  // global index of each plane's first run
+  for (std::int64_t k = 0; k < nz; ++k) plane_first[static_cast<std::size_t>(k) + 1] = plane_first[static_cast<std::size_t>(k)] + static_cast<std::int64_t>(plane_runs[static_cast<std::size_t>(k)].size());
+  const std::int64_t total = plane_first.back();
+  if (total == 0) return 0;
+  Components sets(static_cast<std::size_t>(total));
+  // Joins the runs of row (j, k) with those of row (j', k') they overlap (both lists increasing in i).
+  auto join_rows = [&](std::int64_t k, std::int64_t j, std::int64_t k2, std::int64_t j2) {
+    const auto& a = plane_runs[static_cast<std::size_t>(k)];
+    const auto& b = plane_runs[static_cast<std::size_t>(k2)];
+    std::int64_t x = row_start[static_cast<std::size_t>(k * (ny + 1) + j)], x_end = row_start[static_cast<std::size_t>(k * (ny + 1) + j + 1)];
+    std::int64_t y = row_start[static_cast<std::size_t>(k2 * (ny + 1) + j2)], y_end = row_start[static_cast<std::size_t>(k2 * (ny + 1) + j2 + 1)];
+    while (x < x_end && y < y_end) {
+      const Run& r = a[static_cast<std::size_t>(x)];
+      const Run& q = b[static_cast<std::size_t>(y)];
+      if (r.i0 <= q.i1 && q.i0 <= r.i1) sets.join(plane_first[static_cast<std::size_t>(k)] + x, plane_first[static_cast<std::size_t>(k2)] + y);
+      if (r.i1 < q.i1) ++x;
+      else ++y;
+    }
+  };
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j) {
+      if (j > 0) join_rows(k, j, k, j - 1);
+      if (k > 0) join_rows(k, j, k - 1, j);
+    }
+  // Per set (at its root): whether it reaches the border, and its first sample.
+  std::vector<std::uint8_t> border(static_cast<std::size_t>(total), 0);
+  std::vector<std::int64_t> first_sample(static_cast<std::size_t>(total), std::numeric_limits<std::int64_t>::max());
+  std::vector<std::int64_t> root_of(static_cast<std::size_t>(total));
+  for (std::int64_t k = 0; k < nz; ++k) {
+    const auto& runs = plane_runs[static_cast<std::size_t>(k)];
+    for (std::int64_t j = 0; j < ny; ++j)
+      for (auto x = row_start[static_cast<std::size_t>(k * (ny + 1) + j)]; x < row_start[static_cast<std::size_t>(k * (ny + 1) + j + 1)]; ++x) {
+        const Run& r = runs[static_cast<std::size_t>(x)];
+        const std::int64_t run = plane_first[static_cast<std::size_t>(k)] + x, root = sets.find(run);
+        root_of[static_cast<std::size_t>(run)] = root;
+        border[static_cast<std::size_t>(root)] |= k == 0 || k == nz - 1 || j == 0 || j == ny - 1 || r.i0 == 0 || r.i1 == nx - 1;
+        first_sample[static_cast<std::size_t>(root)] = std::min(first_sample[static_cast<std::size_t>(root)], k * plane + j * nx + r.i0);
+      }
+  }
+  // Pockets numbered by first sample.
+  std::vector<std::pair<std::int64_t, std::int64_t>> pocket_roots;  // first sample, root
+  for (std::int64_t run = 0; run < total; ++run)
+    if (root_of[static_cast<std::size_t>(run)] == run && !border[static_cast<std::size_t>(run)]) pocket_roots.push_back({first_sample[static_cast<std::size_t>(run)], run});
+  std::sort(pocket_roots.begin(), pocket_roots.end());
+  std::vector<T> value_of_root(static_cast<std::size_t>(total), T(0));
+  for (std::size_t p = 0; p < pocket_roots.size(); ++p)
+    value_of_root[static_cast<std::size_t>(pocket_roots[p].second)] =
+        static_cast<std::int64_t>(p) < kMaximumPockets ? static_cast<T>(p + 2) : std::numeric_limits<T>::infinity();
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    const auto& runs = plane_runs[static_cast<std::size_t>(k)];
+    for (std::int64_t j = 0; j < ny; ++j) {
+      T* values = field.values.data() + k * plane + j * nx;
+      for (auto x = row_start[static_cast<std::size_t>(k * (ny + 1) + j)]; x < row_start[static_cast<std::size_t>(k * (ny + 1) + j + 1)]; ++x) {
+        const Run& r = runs[static_cast<std::size_t>(x)];
+        const T value = value_of_root[static_cast<std::size_t>(root_of[static_cast<std::size_t>(plane_first[static_cast<std::size_t>(k)] + x)])];
+        std::fill(values + r.i0, values + r.i1 + 1, value);
+      }
+    }
+  });
+  return std::min<std::int64_t>(static_cast<std::int64_t>(pocket_roots.size()), kMaximumPockets);
+}
+
+// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
+// the SAS, or a pocket beyond kMaximumPockets).
+template <typename T>
+inline std::int64_t label_of(T value) {
+  if (value == T(0)) return 0;
+  if (!(value < std::numeric_limits<T>::infinity())) return -1;
+  return static_cast<std::int64_t>(value) - 1;
+}
+
+// A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
+// plane of their centres it lies on (the two such positions are mirror images through that plane).
+struct VertexKey {
+  std::array<std::int32_t, 3> atoms;
+  std::int32_t side;
+  auto operator<=>(const VertexKey&) const = default;
+};
+
+
+// The part of a circle (centre + ρ (cos θ u + sin θ v)) inside another enlarged sphere: θ with
+// 2ρ m cos(θ - φ) < room, where (a, b) = m (cos φ, sin φ); `spread` = 2ρm, and -spread < room < spread.
+struct CoverTerm {
+  double a, b, room, spread;
+  std::int32_t atom;
+};
+
+// A monotone function of the angle of direction (x, y) in [0, 2π), with values in [0, 4): angles
+// compared without trigonometry.
+inline double pseudo_angle(double x, double y) {
+  const double p = y / (std::abs(x) + std::abs(y));
+  if (x < 0) return 2 - p;
+  return y >= 0 ? p : 4 + p;
+}
+
+// Whether the parts in `terms` cover the whole circle with a margin far beyond rounding (1e-9 rad);
+// false when they do not, or might not. `spans` is scratch.
+inline bool certainly_covered(const std::vector<CoverTerm>& terms, std::vector<std::array<double, 2>>& spans) {
+  constexpr double kMargin = 1e-9;
+  spans.clear();
+  for (const CoverTerm& t : terms) {
+    const double cosine = t.room / t.spread;  // of the exposed half-width: covered is θ - φ in (half, 2π - half)
+    if (cosine < -1 + 1e-12) continue;       // a sliver (or nothing): leaving it out only makes the answer "unsure"
+    const double sine = std::sqrt(std::max(0.0, (1 - cosine) * (1 + cosine)));
+    const double m = std::sqrt(t.a * t.a + t.b * t.b), ca = t.a / m, sa = t.b / m;
+    const double start = pseudo_angle(ca * cosine - sa * sine, sa * cosine + ca * sine);
+    const double end = pseudo_angle(ca * cosine + sa * sine, sa * cosine - ca * sine);
+    // Past a full turn? The covered length is more than π exactly when cosine > 0.
+    const bool wraps = cosine > 0 ? end <= start : end < start;
+    spans.push_back({start, wraps ? end + 4 : end});
+  }
+  if (spans.empty()) return false;
+  std::sort(spans.begin(), spans.end());
+  const double first = spans.front()[0];
+  double reached = spans.front()[1];
+  for (const auto& span : spans) reached = std::max(reached, span[1] - 4);  // wrapped parts cover the start again
+  for (std::size_t c = 1; c < spans.size(); ++c) {
+    if (spans[c][0] > reached - kMargin) return false;
+    reached = std::max(reached, spans[c][1]);
+  }
+  return reached > first + 4 + kMargin;
+}
+
 // Probe centres on the SAS surface (see solvent_excluded_field), in grid coordinates; decides on the way
 // which pockets of `field` (labelled by flood_and_label_pockets) a probe reaches from outside, and
 // resolves them: 0 (probe centres) or +infinity.
@@ -283,7 +303,7 @@ class Components {
 // carve_cavities, everything joined to an outside sample carves).
 template <typename T>
 std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, std::int64_t pockets,
-                                        bool carve_cavities, int threads) {
+                                        bool carve_cavities, int threads, StageClock& clock) {
   const double h = field.spacing;
   const auto [nx, ny, nz] = field.size;
   const auto count = static_cast<std::int32_t>(atoms.size());
@@ -318,6 +338,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   neighbours.reserve(static_cast<std::size_t>(neighbour_start.back()));
   for (auto& part : chunk_neighbours) neighbours.insert(neighbours.end(), part.begin(), part.end()), std::vector<std::int32_t>().swap(part);
 
+  clock.lap("neighbours");
   // Whether p (on the sphere of `self`) is strictly inside another enlarged sphere.
   // `hint` remembers the last covering atom: neighbouring points are mostly covered by the same one.
   auto covered = [&](const Vec3& p, std::int32_t self, std::int32_t& hint) {
@@ -368,6 +389,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     std::vector<std::int32_t> sample_arc, vertex_arc;  // local arc index
     std::vector<std::pair<VertexKey, std::int32_t>> ends;  // local arc
     std::vector<std::pair<std::int32_t, std::int64_t>> links;  // local arc, label (0 outside, p pocket)
+    std::vector<std::int32_t> circled, exposed;  // atoms with a circle; atoms with an exposed arc
   };
   std::vector<ChunkArcs> chunk_arcs(static_cast<std::size_t>(chunks));
   // A vertex of the SAS: its three atoms (ascending) and the side of their centres' plane it lies on.
@@ -390,6 +412,9 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
       std::int32_t from_atom, to_atom;
     };
     std::vector<Covering> coverings;
+    std::vector<CoverTerm> terms;
+    std::vector<std::array<double, 2>> spans;
+    std::vector<std::int32_t> common;
     std::vector<Gap> gaps;
     std::vector<std::int64_t> linked;
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
@@ -402,6 +427,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         const Vec3 axis = atoms[j].position - atom.position;
         const double d = norm(axis);
         if (d >= reach_i + reach_j || d <= std::abs(reach_i - reach_j) || d == 0) continue;
+        out.circled.push_back(index), out.circled.push_back(j);
         const double along = (d * d + reach_i * reach_i - reach_j * reach_j) / (2 * d);
         const double circle_radius = std::sqrt(std::max(0.0, reach_i * reach_i - along * along));
         const Vec3 unit_axis = (1 / d) * axis;
@@ -414,34 +440,46 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         // are the coordinates of centre - c_k in the circle's plane; a whole circle inside k is skipped.
         // Most circles of a protein are buried: skip the circle when one enlarged sphere holds all of it
         // (its farthest point from that sphere's centre is inside); only then are the intervals computed.
+        // Only a sphere overlapping both can cover a point of the circle: the neighbours common to
+        // index and j (both lists ascending), about half of index's.
+        common.clear();
+        for (auto x = neighbour_start[index], y = neighbour_start[j]; x < neighbour_start[index + 1] && y < neighbour_start[j + 1];) {
+          const std::int32_t p = neighbours[static_cast<std::size_t>(x)], q = neighbours[static_cast<std::size_t>(y)];
+          if (p == q) common.push_back(p);
+          x += p <= q, y += q <= p;
+        }
         bool buried = false;
-        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1] && !buried; ++n) {
-          const std::int32_t other = neighbours[static_cast<std::size_t>(n)];
-          if (other == j) continue;
+        for (std::size_t n = 0; n < common.size() && !buried; ++n) {
+          const std::int32_t other = common[n];
           const Vec3 offset = atoms[other].position - centre;
           const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
           const double far = circle_radius + std::sqrt(b2);
           buried = a * a + far * far < reach2[other] * (1 - 1e-12);
         }
         if (buried) continue;
-        coverings.clear();
-        for (auto n = neighbour_start[index]; n < neighbour_start[index + 1]; ++n) {
-          const std::int32_t k = neighbours[static_cast<std::size_t>(n)];
-          if (k == j) continue;
+        terms.clear();
+        bool whole = false;
+        for (const std::int32_t k : common) {
           const Vec3 offset = centre - atoms[k].position;
           const double a = dot(offset, u), b = dot(offset, v), along_axis = dot(offset, unit_axis);
           const double room = reach2[k] - (a * a + b * b + along_axis * along_axis) - circle_radius * circle_radius;
           const double spread = 2 * circle_radius * std::sqrt(a * a + b * b);
           if (room >= spread) {
-            coverings.assign(1, {0, kTurn, k});  // all of it (up to rounding: the test above missed it)
+            whole = true;  // all of it (up to rounding: the test above missed it)
             break;
           }
-          if (room > -spread) {
-            const double half = std::acos(room / spread);  // exposed: |θ - φ| <= half
-            double start = std::atan2(b, a) + half;
-            start -= kTurn * std::floor(start / kTurn);
-            coverings.push_back({start, 2 * (std::numbers::pi - half), k});
-          }
+          if (room > -spread) terms.push_back({a, b, room, spread, k});
+        }
+        // Most of the rest are covered by several spheres together: decided without trigonometry when
+        // the union covers the circle with room to spare (certainly_covered); the angles are computed,
+        // as before, only for the others.
+        if (whole || certainly_covered(terms, spans)) continue;
+        coverings.clear();
+        for (const CoverTerm& t : terms) {
+          const double half = std::acos(t.room / t.spread);  // exposed: |θ - φ| <= half
+          double start = std::atan2(t.b, t.a) + half;
+          start -= kTurn * std::floor(start / kTurn);
+          coverings.push_back({start, 2 * (std::numbers::pi - half), t.atom});
         }
         if (coverings.size() == 1 && coverings.front().length >= kTurn) continue;
         auto point_at = [&](double angle) { return centre + circle_radius * (std::cos(angle) * u + std::sin(angle) * v); };
@@ -472,6 +510,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         }
         const auto steps = std::max<std::int64_t>(8, ceil_int(kTurn * circle_radius / (0.5 * h)));
         const double step_angle = kTurn / static_cast<double>(steps);
+        if (!gaps.empty()) out.exposed.push_back(index), out.exposed.push_back(j);
         for (const Gap& gap : gaps) {
           const auto arc = static_cast<std::int32_t>(out.arcs++);
           linked.clear();
@@ -502,6 +541,17 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
       }
     }
   });
+  clock.lap("arcs");
+  // Whether the radial projections onto an atom's sphere need testing: not when the sphere meets another
+  // in a circle and none of its circles has an exposed arc. Then nothing of it is exposed (an exposed
+  // part short of the whole sphere is bounded by exposed arcs), and that is true of about a third of a
+  // protein's atoms.
+  std::vector<std::uint8_t> face(atoms.size(), 0);  // bit 1: some circle; bit 2: some exposed arc
+  for (auto& part : chunk_arcs) {
+    for (const std::int32_t a : part.circled) face[static_cast<std::size_t>(a)] |= 1;
+    for (const std::int32_t a : part.exposed) face[static_cast<std::size_t>(a)] |= 2;
+    std::vector<std::int32_t>().swap(part.circled), std::vector<std::int32_t>().swap(part.exposed);
+  }
   // Components of outside, pockets and arcs: nodes 0 (outside), 1..pockets, then the arcs in order.
   std::vector<std::int64_t> arc_start(static_cast<std::size_t>(chunks) + 1, 0);
   for (std::int64_t c = 0; c < chunks; ++c) arc_start[static_cast<std::size_t>(c) + 1] = arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
@@ -536,6 +586,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     }
   });
 
+  clock.lap("pockets");
   // A point of the SAS counts as a probe centre when its arc carves; other points (radial projections,
   // on the faces) when a carving sample (0) is among the 27 around their nearest sample.
   auto connected = [&](const Vec3& unit) {
@@ -553,6 +604,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     auto& out = chunk_centres[static_cast<std::size_t>(chunk)];
     std::int32_t hint = -1;
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
+      if (face[static_cast<std::size_t>(index)] == 1) continue;  // buried
       const auto& atom = atoms[index];
       const double outer = reach[index], inner = outer - h;
       // In crevices narrower than a grid step no sample is outside the SAS, yet a probe fits: every
@@ -602,6 +654,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
       if (carves[static_cast<std::size_t>(offset + arcs.vertex_arc[s])]) out.push_back(arcs.vertices[s]);
   });
   chunk_arcs.clear();
+  clock.lap("projections");
   std::size_t total = 0;
   for (const auto& part : chunk_centres) total += part.size();
   std::vector<Vec3> centres;
@@ -610,72 +663,198 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   // In blocks of 8³ samples, block by block along a Morton curve, so that consecutive centres touch the same
   // part of the grid (the order does not change the field: lowering is a min).
   auto block_key = [](const Vec3& c) {
+    // The low 20 bits of b, moved to every third bit.
+    auto spread = [](std::uint64_t b) {
+      b &= 0xfffff;
+      b = (b | b << 32) & 0x1f00000000ffffu;
+      b = (b | b << 16) & 0x1f0000ff0000ffu;
+      b = (b | b << 8) & 0x100f00f00f00f00fu;
+      b = (b | b << 4) & 0x10c30c30c30c30c3u;
+      b = (b | b << 2) & 0x1249249249249249u;
+      return b;
+    };
     std::uint64_t key = 0;
-    for (int d = 0; d < 3; ++d) {
-      const auto b = static_cast<std::uint64_t>(std::max(0.0, c[d]) / 8);
-      for (int bit = 0; bit < 20; ++bit) key |= ((b >> bit) & 1u) << (3 * bit + d);
-    }
+    for (int d = 0; d < 3; ++d) key |= spread(static_cast<std::uint64_t>(std::max(0.0, c[d]) / 8)) << d;
     return key;
   };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(centres.size());
-  for (std::size_t c = 0; c < centres.size(); ++c) order[c] = {block_key(centres[c]), static_cast<std::uint32_t>(c)};
-  std::sort(order.begin(), order.end());
+  // By key with a least-significant-digit radix sort (stable, so ties keep the chunks' order): linear,
+  // where a comparison sort of a million centres took a tenth of a second on one thread.
+  std::vector<std::uint64_t> keys(centres.size());
+  std::uint64_t largest = 0;
+  for (std::size_t c = 0; c < centres.size(); ++c) keys[c] = block_key(centres[c]), largest = std::max(largest, keys[c]);
+  std::vector<std::uint32_t> order(centres.size()), next(centres.size());
+  for (std::size_t c = 0; c < centres.size(); ++c) order[c] = static_cast<std::uint32_t>(c);
+  constexpr int kDigit = 11;
+  std::vector<std::size_t> digit_start((std::size_t{1} << kDigit) + 1);
+  for (int shift = 0; shift < 64 && (largest >> shift) != 0; shift += kDigit) {
+    std::fill(digit_start.begin(), digit_start.end(), 0);
+    const std::uint64_t mask = (std::uint64_t{1} << kDigit) - 1;
+    for (const std::uint32_t c : order) ++digit_start[((keys[c] >> shift) & mask) + 1];
+    for (std::size_t d = 1; d < digit_start.size(); ++d) digit_start[d] += digit_start[d - 1];
+    for (const std::uint32_t c : order) next[digit_start[(keys[c] >> shift) & mask]++] = c;
+    order.swap(next);
+  }
   std::vector<Vec3> sorted(centres.size());
-  for (std::size_t c = 0; c < centres.size(); ++c) sorted[c] = centres[order[c].second];
+  for (std::size_t c = 0; c < centres.size(); ++c) sorted[c] = centres[order[c]];
   return sorted;
 }
 
-// Lowers every sample within `radius` (grid units) of a centre (and some a little farther: any sample
-// may take its exact distance to a valid centre) to its squared distance in grid units². Rows of a ball
-// of radius `radius` + sqrt(3)/2 around the nearest sample hold every sample within `radius` of the
-// centre; they come from one table, so the inner loop has no square root or rounding. Plane k belongs
-// to chunk k % threads; min is exact and order-free, so the result is deterministic.
+// std::llround (half away from zero) without a libm call, for |x| < 2^52.
+inline std::int64_t round_int(double x) {
+  const auto t = static_cast<std::int64_t>(x);  // towards zero; x - t is exact
+  const double rest = x - static_cast<double>(t);
+  return rest >= 0.5 ? t + 1 : rest <= -0.5 ? t - 1 : t;
+}
+
+// Runs of this many samples along axis 0 (segment i / kSegment of row (j, k)) tell lower_near_centres
+// which rows it may skip.
+constexpr std::int64_t kSegment = 8;
+
+// values[m] = min(values[m], across + (m + start)²) for m in [0, length): one row of a ball.
 template <typename T>
-void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, int threads) {
+inline void lower_row(T* values, std::int32_t length, T across, T start) {
+  for (std::int32_t m = 0; m < length; ++m) {
+    const T dx = static_cast<T>(m) + start;
+    const T value = across + dx * dx;
+    values[m] = value < values[m] ? value : values[m];
+  }
+}
+
+// The same for a row whose `padded` samples (a multiple of 4, at most length + 3) may all be read and
+// written: whole vectors with the samples past `length` masked out, rather than a vector loop with a
+// tail for every row (rows are short: 5 to 19 samples), which cost more in loop control and branch
+// misses than in arithmetic. The values are those of lower_row to the last bit.
+#if defined(__GNUC__)
+using Floats = float __attribute__((vector_size(16)));
+using Ints = std::int32_t __attribute__((vector_size(16)));
+
+// Vectors [0, vectors) of a padded row, unrolled.
+template <int vectors>
+inline void lower_vectors(float* values, Floats m, Floats end, Floats a, Floats s) {
+  const Floats four = {4, 4, 4, 4};
+  for (int q = 0; q < vectors; ++q, m += four) {
+    Floats old;
+    std::memcpy(&old, values + 4 * q, sizeof old);
+    const Floats dx = m + s;
+    const Floats value = a + dx * dx;
+    const Ints take = (value < old) & (m < end);
+    const Floats out = reinterpret_cast<Floats>((reinterpret_cast<Ints>(value) & take) | (reinterpret_cast<Ints>(old) & ~take));
+    std::memcpy(values + 4 * q, &out, sizeof out);
+  }
+}
+#endif
+
+inline void lower_row_padded(float* values, std::int32_t padded, std::int32_t length, float across, float start) {
+#if defined(__GNUC__)
+  const Floats m = {0, 1, 2, 3};
+  const auto last = static_cast<float>(length);
+  const Floats end = {last, last, last, last}, a = {across, across, across, across}, s = {start, start, start, start};
+  switch (padded / 4) {
+    case 1: return lower_vectors<1>(values, m, end, a, s);
+    case 2: return lower_vectors<2>(values, m, end, a, s);
+    case 3: return lower_vectors<3>(values, m, end, a, s);
+    case 4: return lower_vectors<4>(values, m, end, a, s);
+    case 5: return lower_vectors<5>(values, m, end, a, s);
+    default: break;
+  }
+  (void)padded;
+#endif
+  lower_row(values, length, across, start);
+}
+inline void lower_row_padded(double* values, std::int32_t, std::int32_t length, double across, double start) {
+  lower_row(values, length, across, start);
+}
+
+// Lowers every sample within `radius` (grid units) of a centre (and some a little farther: any sample
+// may take its exact distance to a valid centre) to its squared distance in grid units², except where
+// every sample of the row's segments is at most `settled` (grid units²): such rows keep their values.
+// Rows of a ball of radius `radius` + sqrt(3)/2 around the nearest sample hold every sample within
+// `radius` of the centre; they come from one table, so the inner loop has no square root or rounding.
+// Plane k belongs to chunk k % threads; min is exact and order-free, so the result is deterministic.
+template <typename T>
+void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, double settled, int threads) {
   const auto [nx, ny, nz] = field.size;
   const double reach = radius + std::sqrt(3.0) / 2 + 1e-9;
   const auto extent = static_cast<std::int64_t>(std::ceil(reach));
+  const std::int64_t plane = nx * ny, segments = (nx + kSegment - 1) / kSegment;
+  // The rows of the ball, plane by plane (dk ascending, then dj): offsets from the nearest sample.
   struct Row {
-    std::int32_t dj, half;
+    double dj, first;                  // dj; the offset of the row's first sample along axis 0 (-half)
+    std::int64_t offset, segment_row;  // of the first sample in the field; of the row's segments
+    std::int32_t half, padded, length;
   };
-  // rows[dk + extent]: the rows of plane dk, each spanning di in [-half, half].
-  std::vector<std::vector<Row>> rows(static_cast<std::size_t>(2 * extent + 1));
-  for (std::int64_t dk = -extent; dk <= extent; ++dk)
+  std::vector<Row> rows;
+  std::vector<std::size_t> plane_rows;  // rows of plane dk: [plane_rows[dk + extent], plane_rows[dk + extent + 1])
+  for (std::int64_t dk = -extent; dk <= extent; ++dk) {
+    plane_rows.push_back(rows.size());
     for (std::int64_t dj = -extent; dj <= extent; ++dj) {
       const double rest = reach * reach - static_cast<double>(dk * dk + dj * dj);
       if (rest < 0) continue;
-      rows[static_cast<std::size_t>(dk + extent)].push_back({static_cast<std::int32_t>(dj), static_cast<std::int32_t>(std::floor(std::sqrt(rest)))});
+      const auto half = static_cast<std::int32_t>(std::floor(std::sqrt(rest)));
+      rows.push_back({static_cast<double>(dj), static_cast<double>(-half), dk * plane + dj * nx - half, (dk * ny + dj) * segments, half,
+                      (2 * half + 1 + 3) / 4 * 4, 2 * half + 1});
     }
-  const std::int64_t plane = nx * ny;
+  }
+  plane_rows.push_back(rows.size());
+  // A row of at most 2 kSegment + 1 samples spans at most three segments: its first, its last and the
+  // one between.
+  bool wide = false;
+  for (const Row& row : rows) wide = wide || row.length > 2 * kSegment + 1;
+  // open[segment]: some sample of the segment is above `settled`.
+  std::vector<std::uint8_t> open(static_cast<std::size_t>(segments * ny * nz));
+  const T limit = static_cast<T>(settled);
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+    for (std::int64_t j = 0; j < ny; ++j) {
+      const T* values = field.values.data() + k * plane + j * nx;
+      std::uint8_t* flags = open.data() + (k * ny + j) * segments;
+      for (std::int64_t g = 0; g < segments; ++g) {
+        std::uint8_t any = 0;
+        for (std::int64_t i = g * kSegment; i < std::min(nx, (g + 1) * kSegment); ++i) any |= values[i] > limit;
+        flags[g] = any;
+      }
+    }
+  });
+  auto any_open = [&](const std::uint8_t* flags, std::int64_t i0, std::int64_t i1) {
+    const auto g0 = static_cast<std::uint64_t>(i0) / kSegment, g1 = static_cast<std::uint64_t>(i1) / kSegment;
+    std::uint8_t any = flags[g0] | flags[g1] | flags[(g0 + g1) / 2];
+    if (wide)
+      for (auto g = g0 + 1; g < g1; ++g) any |= flags[g];
+    return any != 0;
+  };
   detail::parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
     for (const auto& c : centres) {
-      const std::int64_t ci = std::llround(c[0]), cj = std::llround(c[1]), ck = std::llround(c[2]);
+      const std::int64_t ci = round_int(c[0]), cj = round_int(c[1]), ck = round_int(c[2]);
       const double fx = c[0] - static_cast<double>(ci), fy = c[1] - static_cast<double>(cj), fz = c[2] - static_cast<double>(ck);
-      const bool clip = ci - extent < 0 || cj - extent < 0 || ck - extent < 0 || ci + extent >= nx || cj + extent >= ny || ck + extent >= nz;
       std::int64_t dk = -extent;
       dk += (((chunk - (ck + dk)) % threads) + threads) % threads;
+      // Away from the border (the padded rows included), no row needs clipping.
+      if (ci - extent >= 0 && cj - extent >= 0 && ck - extent >= 0 && ci + extent + 3 < nx && cj + extent < ny && ck + extent < nz) {
+        T* centre_sample = field.values.data() + ck * plane + cj * nx + ci;
+        const std::uint8_t* centre_segments = open.data() + (ck * ny + cj) * segments;
+        for (; dk <= extent; dk += threads) {
+          const double z = static_cast<double>(dk) - fz, z2 = z * z;
+          const Row* end = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent + 1)];
+          for (const Row* row = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent)]; row != end; ++row) {
+            if (!any_open(centre_segments + row->segment_row, ci - row->half, ci + row->half)) continue;
+            const double y = row->dj - fy;
+            lower_row_padded(centre_sample + row->offset, row->padded, row->length, static_cast<T>(z2 + y * y), static_cast<T>(row->first - fx));
+          }
+        }
+        continue;
+      }
       for (; dk <= extent; dk += threads) {
         const std::int64_t k = ck + dk;
-        if (clip && (k < 0 || k >= nz)) continue;
+        if (k < 0 || k >= nz) continue;
         const double z = static_cast<double>(dk) - fz, z2 = z * z;
-        for (const Row& row : rows[static_cast<std::size_t>(dk + extent)]) {
-          const std::int64_t j = cj + row.dj;
-          std::int64_t i0 = ci - row.half, i1 = ci + row.half;
-          if (clip) {
-            if (j < 0 || j >= ny) continue;
-            i0 = std::max<std::int64_t>(i0, 0), i1 = std::min<std::int64_t>(i1, nx - 1);
-            if (i0 > i1) continue;
-          }
-          const double y = static_cast<double>(row.dj) - fy;
-          // In T, from an int32 offset: SSE2 vectorizes this loop (no int64 -> floating conversion).
-          const T across = static_cast<T>(z2 + y * y), start = static_cast<T>(static_cast<double>(i0 - ci) - fx);
-          T* values = field.values.data() + k * plane + j * nx + i0;
-          const auto length = static_cast<std::int32_t>(i1 - i0 + 1);
-          for (std::int32_t m = 0; m < length; ++m) {
-            const T dx = static_cast<T>(m) + start;
-            const T value = across + dx * dx;
-            values[m] = value < values[m] ? value : values[m];
-          }
+        for (auto r = plane_rows[static_cast<std::size_t>(dk + extent)]; r < plane_rows[static_cast<std::size_t>(dk + extent + 1)]; ++r) {
+          const Row& row = rows[r];
+          const std::int64_t j = cj + static_cast<std::int64_t>(row.dj);
+          if (j < 0 || j >= ny) continue;
+          const std::int64_t i0 = std::max<std::int64_t>(ci - row.half, 0), i1 = std::min<std::int64_t>(ci + row.half, nx - 1);
+          if (i0 > i1 || !any_open(open.data() + (k * ny + j) * segments, i0, i1)) continue;
+          const double y = row.dj - fy;
+          lower_row(field.values.data() + k * plane + j * nx + i0, static_cast<std::int32_t>(i1 - i0 + 1), static_cast<T>(z2 + y * y),
+                    static_cast<T>(static_cast<double>(i0 - ci) - fx));
         }
       }
     }
@@ -712,25 +891,37 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
                                  std::ceil(fitting * 100) / 100));
   }
   const int threads = detail::surface_threads(options.threads);
+  StageClock clock;
   field.values.assign(static_cast<std::size_t>(field.count()), static_cast<T>(kUnreached));
   // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those a
   // probe reaches from outside count (as for MSMS's outer surface), unless cavities are carved too.
   mark_accessible_surface(field, atoms, probe, threads);
-  const std::int64_t pockets = flood_and_label_pockets(field);
+  clock.lap("accessible");
+  const std::int64_t pockets = flood_and_label_pockets(field, threads);
+  clock.lap("flood");
   // Which pockets a probe reaches through passages narrower than a step, and more probe centres, on the
   // SAS surface itself (found before the transform, while carving samples are exactly the zeros).
-  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, pockets, options.carve_cavities, threads);
+  const std::vector<Vec3> centres = surface_probe_centres(field, atoms, probe, pockets, options.carve_cavities, threads, clock);
+  clock.lap("sort");
   squared_distance_transform_in_place(field, threads);
+  clock.lap("transform");
   // Each surface centre lowers the samples within probe + sqrt(3) steps of it. That makes g exact (for
   // this set of centres) wherever |g| < sqrt(3) steps, which covers both ends of every lattice edge the
   // surface crosses (g changes by at most the edge length along it), so the contour is the same as with
   // an unbounded reach; deeper inside, the grid samples alone give g.
-  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), threads);
+  // Samples within probe/h - sqrt(3) steps of a lattice centre need no lowering: they stay outside and
+  // no edge the surface crosses reaches them (a neighbour along a lattice edge, at most sqrt(3) steps
+  // away, is within probe/h of that centre, hence not inside). 0.01 of a step keeps rounding away from
+  // that bound; zeros cannot be lowered anyway.
+  const double free_reach = probe / h - std::sqrt(3.0) - 0.01;
+  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), free_reach > 0 ? free_reach * free_reach : 0.0, threads);
+  clock.lap("lower");
   const std::int64_t plane = field.size[0] * field.size[1];
   detail::parallel_chunks(field.size[2], threads, [&](std::int64_t k, int) {
     T* values = field.values.data() + k * plane;
     for (std::int64_t s = 0; s < plane; ++s) values[s] = static_cast<T>(std::sqrt(static_cast<double>(values[s])) * h - probe);
   });
+  clock.lap("root");
   return field;
 }
 
@@ -767,37 +958,6 @@ Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& ato
 
 Mesh surface_from_field(const Grid3<float>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
   return contour_with_atoms(field, atoms, options);
-}
-
-void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const SurfaceOptions& options) {
-  const std::size_t n = mesh.vertex_count();
-  std::vector<std::int32_t> atom_index(n), serial(n), residue(n), model(n);
-  if (n > 0) {
-    if (atoms.empty()) throw InputError("no atoms to take surface provenance from");
-    double largest_radius = 0;
-    for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
-    const AtomGrid grid(atoms, 2.0);
-    constexpr std::size_t kChunk = 4096;
-    detail::parallel_chunks(static_cast<std::int64_t>((n + kChunk - 1) / kChunk), detail::surface_threads(options.threads),
-                            [&](std::int64_t chunk, int) {
-                              const std::size_t first = static_cast<std::size_t>(chunk) * kChunk;
-                              std::int32_t chosen = grid.some_atom_near(mesh.positions[first]);
-                              for (std::size_t v = first; v < std::min(n, first + kChunk); ++v) {
-                                // Consecutive vertices are neighbours on the grid: the last answer is a close bound.
-                                const Vec3& p = mesh.positions[v];
-                                if (norm(p - atoms[chosen].position) - atoms[chosen].radius > 2 * largest_radius) chosen = grid.some_atom_near(p);
-                                chosen = grid.nearest_sphere(p, largest_radius, chosen);
-                                atom_index[v] = chosen;
-                                serial[v] = atoms[chosen].serial;
-                                residue[v] = atoms[chosen].residue_number;
-                                model[v] = atoms[chosen].model;
-                              }
-                            });
-  }
-  mesh.integer_attributes["atomid"] = std::move(atom_index);
-  mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
-  mesh.integer_attributes["vertex_residue_number"] = std::move(residue);
-  mesh.integer_attributes["vertex_model"] = std::move(model);
 }
 
 }  // namespace spheremap

@@ -62,6 +62,35 @@ TEST(DistanceTransform, InPlaceWithAnyStartValuesInDoubleAndFloatAndAnyThreads) 
   }
 }
 
+TEST(DistanceTransform, EveryKindOfLineMatchesBruteForce) {
+  // Lines of zeros and infinities only (two sweeps), of integers and of fractions (lower envelope), and
+  // all-zero or all-infinite lines (nothing to do).
+  std::mt19937 random(11);
+  for (int kind = 0; kind < 3; ++kind) {
+    Grid3<double> start;
+    start.size = {19, 6, 5};
+    start.values.resize(static_cast<std::size_t>(start.count()));
+    for (auto& v : start.values) {
+      const bool target = random() % 5 == 0;
+      v = !target ? std::numeric_limits<double>::infinity() : kind == 0 ? 0.0 : kind == 1 ? static_cast<double>(random() % 40) : 0.25 * (random() % 160);
+    }
+    for (std::int64_t i = 0; i < start.size[0]; ++i) start.values[start.index(i, 2, 2)] = 0;  // an all-zero row
+    for (std::int64_t i = 0; i < start.size[0]; ++i) start.values[start.index(i, 3, 3)] = std::numeric_limits<double>::infinity();
+    Grid3<double> d = start;
+    squared_distance_transform_in_place(d, 2);
+    for (std::int64_t k = 0; k < start.size[2]; ++k)
+      for (std::int64_t j = 0; j < start.size[1]; ++j)
+        for (std::int64_t i = 0; i < start.size[0]; ++i) {
+          double best = std::numeric_limits<double>::infinity();
+          for (std::int64_t c = 0; c < start.size[2]; ++c)
+            for (std::int64_t b = 0; b < start.size[1]; ++b)
+              for (std::int64_t a = 0; a < start.size[0]; ++a)
+                best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
+          ASSERT_EQ(d.values[d.index(i, j, k)], best) << kind << " " << i << " " << j << " " << k;
+        }
+  }
+}
+
 TEST(DistanceTransform, NoTargetGivesInfinity) {
   Grid3<std::uint8_t> empty;
   empty.size = {3, 3, 3};
