@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "spheremap/mesh.hpp"
+#include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/grid.hpp"
 
 namespace spheremap {
@@ -14,25 +15,30 @@ struct HandleCut {
   bool filled = false;                        // true: tunnels were filled; false: handles were cut
   std::int64_t samples_removed = 0;           // samples whose side changed
   std::vector<std::int64_t> removed_samples;  // their grid indices, ascending
+  double area_change = 0;                     // change of the contour's area (all components), area units of the grid
 };
 
 /// Makes the solid {field > level} a topological ball, as seen by contour_isosurface (the Freudenthal
 /// triangulation of the grid), by topology-preserving growth (Kriegeskorte & Goebel 2001; Han, Xu &
 /// Prince 2002) in two ways, keeping the one that changes fewer samples:
-/// - cut: grow a set from the deepest inside sample, adding inside samples by decreasing value (ties by
-///   index) only when simple — their link (14 lattice neighbours, a triangulated sphere) meets the set
-///   in a non-empty connected part whose complement in the link is non-empty and connected (for a full
-///   subcomplex of a 2-sphere this is contractibility, by Alexander duality), so the set stays a ball;
-///   inside samples never added (where a loop would close) go just below `level`; other pieces too;
-/// - fill: the same growth of the outside from the whole grid border, by increasing value; outside
-///   samples never added (spanning tunnels, and cavities) go just above `level`.
+/// - cut: grow a set from the deepest inside sample of the largest inside piece, adding inside samples
+///   by decreasing value only when simple — their link (14 lattice neighbours, a triangulated sphere)
+///   meets the set in a non-empty connected part whose complement in the link is non-empty and
+///   connected (for a full subcomplex of a 2-sphere this is contractibility, by Alexander duality), so
+///   the set stays a ball; inside samples never added (where a loop would close) go just below `level`;
+///   other pieces too;
+/// - fill: the same growth of the outside from the whole grid border, by decreasing distance to the
+///   solid; outside samples never added (spanning tunnels, and cavities) go just above `level`.
 /// Preconditions: some sample > level, every border sample <= level. Throws std::invalid_argument
-/// otherwise. Returns what changed; modifies `field`.
+/// otherwise. Returns what changed (area_change as contour_isosurface(field, level, threads,
+/// minimum_fraction) measures it); modifies `field`.
 /// Both growths take samples from bucket queues: the solid by its value in steps of 1/256 of the grid
-/// spacing, the outside by its squared lattice distance to the solid; within a bucket the last offered
-/// first. Memory: one byte of state per sample, plus (for the outside growth) a float per sample.
-HandleCut cut_handles(Grid3<double>& field, double level);
-HandleCut cut_handles(Grid3<float>& field, double level);
+/// spacing, the outside by its squared lattice distance to the solid (exact below 65535 steps², capped
+/// there); within a bucket the first offered first. Memory: one byte of state per sample, plus (while
+/// the outside grows) two bytes of distance per sample, plus the queues (4 bytes per queued sample).
+/// `threads` (0: one per hardware thread) is used for the distance; the result does not depend on it.
+HandleCut cut_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
+HandleCut cut_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
 
 /// One local change of a per-handle repair: a connected set of samples moved to the other side.
 struct TopologyChange {
@@ -40,11 +46,15 @@ struct TopologyChange {
   std::vector<std::int64_t> samples;  // grid indices, ascending
   std::vector<double> original_values;  // the field at `samples` before the change (for undo)
   int euler_change = 0;               // change of the solid's Euler characteristic (handles removed)
+  /// Change of the contour's area (all components) that this change made, on the field as it was when
+  /// it was applied (changes are applied in order): the changes' areas add up to the contour's change.
+  double area_change = 0;
 };
 
 struct HandleRepair {
   std::vector<TopologyChange> changes;  // in the order applied
   std::int64_t samples_changed = 0;
+  double area_change = 0;               // the sum of the changes' area_change
 };
 
 /// Removes handles one at a time, each by the smaller of its two local changes. Both growths of
@@ -54,9 +64,10 @@ struct HandleRepair {
 /// of the solid (the full subcomplex on inside samples, counted exactly on the 14-neighbour lattice),
 /// i.e. removes a handle without changing the components; pieces and cavities lower it and are left
 /// alone. This is a heuristic: the caller must check the genus of the result and fall back to
-/// cut_handles (undo_handle_repair restores the field). Same preconditions and throws as cut_handles.
-HandleRepair repair_handles(Grid3<double>& field, double level);
-HandleRepair repair_handles(Grid3<float>& field, double level);
+/// cut_handles (undo_handle_repair restores the field). Areas as contour_isosurface(field, level,
+/// threads, minimum_fraction) measures them. Same preconditions and throws as cut_handles.
+HandleRepair repair_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
+HandleRepair repair_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
 
 /// Restores the field values a repair changed.
 void undo_handle_repair(Grid3<double>& field, const HandleRepair& repair);
@@ -73,6 +84,7 @@ struct GenusRepair {
   HandleRepair per_handle;        // the changes, when method == "per-handle"
   HandleCut global;               // when method is "fill" or "cut"
   std::int64_t samples_changed = 0;
+  int rounds = 0;                 // rounds of repair_handles until the outer surface had genus 0 ("per-handle")
 };
 
 /// Makes the largest component of the contour {field = level} (the outer surface of a molecule) genus 0
