@@ -57,17 +57,38 @@ struct HandleRepair {
   double area_change = 0;               // the sum of the changes' area_change
 };
 
-/// Removes handles one at a time, each by the smaller of its two local changes. Both growths of
-/// cut_handles are computed; the samples each leaves out (cut membranes of handles, fill membranes of
-/// tunnels, and whole detached pieces and cavities) are split into connected clusters on the Freudenthal
-/// lattice. Clusters are tried smallest first; one is applied when it raises the Euler characteristic
-/// of the solid (the full subcomplex on inside samples, counted exactly on the 14-neighbour lattice),
-/// i.e. removes a handle without changing the components; pieces and cavities lower it and are left
-/// alone. This is a heuristic: the caller must check the genus of the result and fall back to
-/// cut_handles (undo_handle_repair restores the field). Areas as contour_isosurface(field, level,
-/// threads, minimum_fraction) measures them. Same preconditions and throws as cut_handles.
-HandleRepair repair_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
-HandleRepair repair_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
+/// Removes the handles of the solid's main piece (the largest inside piece, as cut_handles grows it) by
+/// small local changes, each a cut of a handle or a fill of a tunnel, chosen to change the least contour
+/// area. Both growths of cut_handles are computed; the samples each leaves out (cut membranes of handles,
+/// fill membranes of tunnels, whole detached pieces and cavities) are split into connected clusters on
+/// the Freudenthal lattice. A cluster that touches the main piece and raises the Euler characteristic of
+/// the solid (the full subcomplex on inside samples, counted exactly on the 14-neighbour lattice) removes
+/// handles; pieces, cavities and membranes across tunnels of detached pieces are left alone.
+/// - Each such membrane moves to the section of its handle or tunnel with the fewest samples within 4 Å
+///   (a minimum vertex cut, by max-flow, between the far ends of its sides; for a cluster where several
+///   membranes meet, the union of the cuts isolating each side), when that changes less |area|, removes
+///   at least as many handles and stays apart from the other clusters of its side.
+/// - A cut and a fill that touch may remove the same handle twice (after one, the other no longer raises
+///   the Euler characteristic as much). Clusters of one side never touch, so the Euler change of any set
+///   of clusters is its clusters' own plus these pairwise losses. The set chosen removes the handles left
+///   (`handles_to_remove`, or as many as possible) at the least total |area change|: each cluster is worth
+///   handles x price - |area|, a chosen pair loses its lost handles x price, the best set for a price is
+///   a minimum cut (submodular), and the price is the smallest for which that set removes every handle
+///   (binary search), so that no expensive change is bought for a count beyond the genus, which only
+///   enclosed voids or split-off pieces can make up.
+/// - Chosen clusters are applied cheapest first, each only if it still raises the Euler characteristic on
+///   the field as it then is, until `handles_to_remove` are removed; the others complete the count if a
+///   chosen one did not.
+/// A change that encloses a void or splits off a piece also raises the Euler characteristic: the caller
+/// must check the genus of the result (repair_outer_genus does, and repeats) and fall back to cut_handles
+/// (undo_handle_repair restores the field). Areas as contour_isosurface(field, level, threads,
+/// minimum_fraction) measures them. Same preconditions and throws as cut_handles. Memory: as
+/// cut_handles, plus the clusters and, per moved membrane, about 20 bytes per sample of a box around it
+/// (boxes above 4M samples are not searched). Deterministic; independent of `threads`.
+HandleRepair repair_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0,
+                            int handles_to_remove = -1);
+HandleRepair repair_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0,
+                            int handles_to_remove = -1);
 
 /// Restores the field values a repair changed.
 void undo_handle_repair(Grid3<double>& field, const HandleRepair& repair);
@@ -88,11 +109,12 @@ struct GenusRepair {
 };
 
 /// Makes the largest component of the contour {field = level} (the outer surface of a molecule) genus 0
-/// with the smallest change we can find: repair_handles, checked by contouring, repeated on the changed
-/// field while it still changes something (at most 4 rounds); if the largest component still has
-/// handles, the field is restored and cut_handles applied (always genus 0, one
-/// component). Other components (detached pieces, cavities) are left as they are by the per-handle
-/// repair. Same preconditions and throws as cut_handles. `threads` is passed to contour_isosurface.
+/// with the smallest change we can find: repair_handles (asked for the outer genus), checked by
+/// contouring, repeated on the changed field (asked for the genus left) while it still changes something
+/// (at most 4 rounds); if the largest component still has handles, the field is restored and cut_handles
+/// applied (always genus 0, one component). Other components (detached pieces, cavities) are left as they
+/// are by the per-handle repair. Same preconditions and throws as cut_handles. `threads` is passed to
+/// contour_isosurface and the growths; the result does not depend on it.
 GenusRepair repair_outer_genus(Grid3<double>& field, double level, int threads = 0);
 GenusRepair repair_outer_genus(Grid3<float>& field, double level, int threads = 0);
 
