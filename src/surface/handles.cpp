@@ -606,6 +606,55 @@ class MembraneMover {
   MembraneMover(const Lattice& lattice, const std::array<std::int64_t, 3>& size, std::uint8_t* state, int reach)
       : lattice_(lattice), size_(size), state_(state), reach_(reach) {}
 
+  // Completes a new membrane (every sample within the box of the last move, all on the side `inside`)
+  // with what changing it would enclose or split off: the samples of its side next to it, connected
+  // through that side within the box, that do not reach the box's outer layer (a handle's or a tunnel's
+  // sides lead out of the box; a crevice at the rim of a fill, closed by it, does not). Changed too, they
+  // leave no void (or piece) that the Euler characteristic would count as a handle removed. Returns false
+  // if the membrane is a cut that does not touch the outside. `is_inside(s)`: whether sample s is inside.
+  template <typename Inside>
+  bool complete(std::vector<std::int64_t>& membrane, bool inside, Inside&& is_inside) {
+    seen_.assign(static_cast<std::size_t>(count_), 0);
+    for (const auto s : membrane) seen_[static_cast<std::size_t>(local(s))] = 1;
+    bool touches_outside = false;
+    std::vector<std::int64_t> enclosed, group, stack;
+    const std::size_t size = membrane.size();
+    for (std::size_t k = 0; k < size; ++k) {
+      const std::int64_t b = local(membrane[k]);
+      for (int n = 0; n < 14; ++n) {
+        const std::int64_t start = b + offset_[n];
+        const bool side = is_inside(global(start));
+        touches_outside = touches_outside || !side;
+        if (seen_[static_cast<std::size_t>(start)] || side != inside) continue;
+        bool escapes = false;  // one connected group of the side's samples next to the membrane
+        group.assign(1, start);
+        stack.assign(1, start);
+        seen_[static_cast<std::size_t>(start)] = 1;
+        while (!stack.empty()) {
+          const auto v = stack.back();
+          stack.pop_back();
+          if (!interior(v)) {
+            escapes = true;
+            continue;
+          }
+          for (int m = 0; m < 14; ++m) {
+            const std::int64_t t = v + offset_[m];
+            if (seen_[static_cast<std::size_t>(t)] || is_inside(global(t)) != inside) continue;
+            seen_[static_cast<std::size_t>(t)] = 1;
+            stack.push_back(t);
+            group.push_back(t);
+          }
+        }
+        if (!escapes)
+          for (const auto v : group) enclosed.push_back(global(v));
+      }
+    }
+    if (inside && !touches_outside) return false;
+    membrane.insert(membrane.end(), enclosed.begin(), enclosed.end());
+    std::sort(membrane.begin(), membrane.end());
+    return true;
+  }
+
   // The new membrane (sorted sample indices) if one with fewer samples than `membrane` exists, else empty.
   // `member_bit`: kInSolid for a cut (the membrane's samples are inside), kInOutside for a fill.
   std::vector<std::int64_t> move(const std::vector<std::int64_t>& membrane, std::uint8_t member_bit) {
@@ -892,7 +941,7 @@ class MembraneMover {
   std::array<std::int64_t, 3> low_{}, extent_{};
   std::array<std::int64_t, 14> offset_{};
   std::int64_t count_ = 0;
-  std::vector<std::uint8_t> label_, terminal_, used_;
+  std::vector<std::uint8_t> label_, terminal_, used_, seen_;
   std::uint8_t source_side_ = 1;
   std::vector<std::uint16_t> distance_;
   std::vector<std::int8_t> next_, previous_;
@@ -1051,10 +1100,10 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
     if (c.euler <= 0) continue;
     c.area = area_change(field, level, minimum_fraction, c.change.samples, new_value(c.change));
     auto moved = mover.move(c.change.samples, c.change.filled ? kInOutside : kInSolid);
-    if (moved.empty()) continue;
+    const bool inside = !c.change.filled;
+    if (moved.empty() || !mover.complete(moved, inside, [&](std::int64_t t) { return values[t] > level; })) continue;
     for (const auto s : c.change.samples) state[s] |= kMark;
     bool apart = true;
-    const bool inside = !c.change.filled;
     for (const auto s : moved) {
       lattice.neighbours(s, [&](int, std::int64_t t) {
         if (t >= 0 && (state[t] & (kClustered | kMark)) == kClustered && (values[t] > level) == inside) apart = false;
@@ -1062,12 +1111,11 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
     }
     for (const auto s : c.change.samples) state[s] &= static_cast<std::uint8_t>(~kMark);
     if (!apart) continue;
-    // A section of a single membrane's handle through a junction of tunnels (or handles) may remove two
-    // at once: the selection below weighs it as such. The union of isolating cuts of a cluster of several
-    // membranes may also enclose a pocket, which the Euler characteristic would count as a handle: there
-    // the count must stay the same (on the 88 structures at 1 Å, the rule that gains and loses nowhere).
+    // A section through a junction of tunnels (or handles) may remove more at once than the membrane it
+    // replaces (it encloses no pocket and splits off no piece, so its Euler change counts handles only):
+    // the selection below weighs it as such; one that removes fewer is not taken.
     const int moved_euler = euler_change(field, level, moved, c.change.filled, state.data());
-    if (moved_euler < c.euler || (c.euler > 1 && moved_euler != c.euler)) continue;
+    if (moved_euler < c.euler) continue;
     const double moved_area = area_change(field, level, minimum_fraction, moved, new_value(c.change));
     if (std::abs(moved_area) >= std::abs(c.area)) continue;
     for (const auto s : c.change.samples) state[s] &= static_cast<std::uint8_t>(~kClustered);
