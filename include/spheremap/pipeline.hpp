@@ -43,7 +43,11 @@ struct MapJobOptions {
 struct HandleChangeReport {
   std::string kind;              // "cut" (a handle cut through) or "fill" (a tunnel spanned)
   std::int64_t samples = 0;      // grid samples moved to the other side
-  double volume = 0;             // Å³ (samples x grid³)
+  double volume = 0;             // Å³ (samples x grid³): removed by a cut, added by a fill
+  /// Å², what this change did to the area of the contour (every component, almost always the outer
+  /// surface), on the field as it was when applied: the changes add up to the surface's area change.
+  double area_change = 0;
+  int handles_removed = 0;       // 1, or more for a change that spans several handles at once
   Vec3 centre{};                 // mean position of the samples
   std::vector<std::string> lining_residues;  // "chain:NAMEnumber[icode]", nearest atoms of the samples, sorted
 };

@@ -145,9 +145,11 @@ std::vector<std::string> residues_near_samples(const Grid3<T>& field, const std:
 
 template <typename T>
 HandleChangeReport describe_change(const Grid3<T>& field, bool filled, const std::vector<std::int64_t>& samples,
-                                   const std::vector<Atom>& atoms, double reach) {
+                                   double area_change, int handles_removed, const std::vector<Atom>& atoms, double reach) {
   HandleChangeReport change;
   change.kind = filled ? "fill" : "cut";
+  change.area_change = area_change;
+  change.handles_removed = handles_removed;
   change.samples = static_cast<std::int64_t>(samples.size());
   change.volume = static_cast<double>(samples.size()) * std::pow(field.spacing, 3);
   const auto [nx, ny, nz] = field.size;
@@ -201,9 +203,9 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
   Mesh mesh;
   {
     // The single-precision field (4 bytes per sample) is freed as soon as the final contour exists; the
-    // repair adds a state byte and a float distance per sample, counted against the memory budget.
+    // repair adds a state byte and two bytes of distance per sample, counted against the memory budget.
     SurfaceOptions budgeted = surface;
-    if (!keep_topology) budgeted.extra_bytes_per_sample += 5;
+    if (!keep_topology) budgeted.extra_bytes_per_sample += 3;
     Grid3<float> field = solvent_excluded_field_float(atoms, budgeted);
     lap("field");
     mesh = contour_isosurface(field, 0.0, surface.threads, surface.contour_minimum_fraction);
@@ -222,9 +224,11 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
       report.samples_changed = fix.samples_changed;
       report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
       for (const auto& change : fix.per_handle.changes)
-        report.changes.push_back(describe_change(field, change.filled, change.samples, atoms, reach));
+        report.changes.push_back(
+            describe_change(field, change.filled, change.samples, change.area_change, change.euler_change, atoms, reach));
       if (!fix.global.removed_samples.empty())
-        report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples, atoms, reach));
+        report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples, fix.global.area_change,
+                                                 report.genus_before, atoms, reach));
       lap("repair");
     }
   }
@@ -421,6 +425,8 @@ nlohmann::json changes_json(const std::vector<HandleChangeReport>& changes) {
     list.push_back({{"kind", c.kind},
                     {"samples", c.samples},
                     {"volume", c.volume},
+                    {"area_change", c.area_change},
+                    {"handles_removed", c.handles_removed},
                     {"centre", std::vector<double>(c.centre.begin(), c.centre.end())},
                     {"lining_residues", c.lining_residues}});
   return list;

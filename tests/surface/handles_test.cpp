@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <random>
 
 #include "../test_support.hpp"
@@ -170,7 +173,7 @@ TEST(Handles, RandomNecklacesGetAGenusZeroOuterSurface) {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> step(-1.0, 1.0);
   int per_handle = 0, fallback = 0, untouched = 0;
-  for (int trial = 0; trial < 25; ++trial) {
+  for (int trial = 0; trial < 16; ++trial) {
     std::vector<Vec3> centres{{0, 0, 0}};
     while (centres.size() < 60) {
       Vec3 d{step(random), step(random), step(random)};
@@ -241,6 +244,182 @@ TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourIs
     repaired += in_single.method != "none";
   }
   EXPECT_GT(repaired, 0);
+}
+
+
+// Total area of a contour (every component).
+double contour_area(const Grid3<double>& grid) {
+  double area = 0;
+  for (const auto& c : mesh_components(contour_isosurface(grid, 0))) area += c.area;
+  return area;
+}
+
+Grid3<double> sampled_box(std::array<std::int64_t, 3> size, double spacing, const Vec3& origin, auto&& function) {
+  Grid3<double> grid;
+  grid.size = size;
+  grid.spacing = spacing;
+  grid.origin = origin;
+  grid.values.resize(static_cast<std::size_t>(grid.count()));
+  for (std::int64_t k = 0; k < size[2]; ++k)
+    for (std::int64_t j = 0; j < size[1]; ++j)
+      for (std::int64_t i = 0; i < size[0]; ++i) grid.values[grid.index(i, j, k)] = function(grid.point(i, j, k));
+  return grid;
+}
+
+// A slab pierced by a tunnel along z whose cross-section goes from a slit (0.6 x 4.0 Å at z = -1) to a
+// square (1.2 x 1.2 Å at z = +1): narrowest by inscribed radius at the slit, smallest by area at the square.
+double slit_tunnel(const Vec3& p) {
+  const double t = std::clamp((p[2] + 1.0) / 2.0, 0.0, 1.0);
+  const double wx = 0.6 + 0.6 * t, wy = 4.0 - 2.8 * t;
+  const double tunnel = std::max(std::abs(p[0]) - wx / 2, std::abs(p[1]) - wy / 2);
+  return std::min({tunnel, 1.6 - std::abs(p[2]), 4.0 - std::max(std::abs(p[0]), std::abs(p[1]))});
+}
+
+TEST(Handles, ATunnelIsFilledAtItsSmallestCrossSectionNotItsNarrowest) {
+  constexpr double h = 0.25;
+  auto grid = sampled_box({40, 40, 20}, h, {-4.875, -4.875, -2.375}, slit_tunnel);
+  // The tunnel's cross-sections on the lattice: outside samples inside the slab's footprint, per z-plane.
+  std::int64_t smallest = std::numeric_limits<std::int64_t>::max(), largest = 0, smallest_plane = -1;
+  for (std::int64_t k = 0; k < grid.size[2]; ++k) {
+    if (std::abs(grid.point(0, 0, k)[2]) > 1.5) continue;
+    std::int64_t count = 0;
+    for (std::int64_t j = 0; j < grid.size[1]; ++j)
+      for (std::int64_t i = 0; i < grid.size[0]; ++i) {
+        const Vec3 p = grid.point(i, j, k);
+        count += grid.values[grid.index(i, j, k)] <= 0 && std::max(std::abs(p[0]), std::abs(p[1])) < 3.5;
+      }
+    if (count < smallest) smallest = count, smallest_plane = k;
+    largest = std::max(largest, count);
+  }
+  ASSERT_LT(2 * smallest, largest);  // the slit's section is more than twice the square's
+  const double before = contour_area(grid);
+  const auto repair = repair_outer_genus(grid, 0);
+  ASSERT_EQ(repair.method, "per-handle");
+  ASSERT_EQ(repair.per_handle.changes.size(), 1u);
+  const auto& fill = repair.per_handle.changes.front();
+  EXPECT_TRUE(fill.filled);
+  // The membrane is the square section (the growth alone put it across the slit: 30 samples, +3.0 Å²),
+  // and its area change is about two faces of that section.
+  EXPECT_EQ(static_cast<std::int64_t>(fill.samples.size()), smallest);
+  for (const auto s : fill.samples) EXPECT_LE(std::abs(s / (grid.size[0] * grid.size[1]) - smallest_plane), 1);
+  const double faces = 2.0 * static_cast<double>(smallest) * h * h;
+  EXPECT_GT(fill.area_change, 0.8 * faces);
+  EXPECT_LT(fill.area_change, 1.1 * faces);
+  // The reported area change is the contour's.
+  EXPECT_NEAR(fill.area_change, contour_area(grid) - before, 1e-9 * before);
+  expect_one_sphere(contour_isosurface(grid, 0));
+}
+
+// A ring of `count` balls of radius `ball` whose centres lie on a circle of radius `ring` (z = 0).
+double ring_of_balls(const Vec3& p, int count, double ring, double ball) {
+  double best = -1e9;
+  for (int b = 0; b < count; ++b) {
+    const double angle = 2 * std::numbers::pi * b / count;
+    best = std::max(best, ball - norm(p - Vec3{ring * std::cos(angle), ring * std::sin(angle), 0}));
+  }
+  return best;
+}
+
+TEST(Handles, AThinRingOfBallsIsCutAtANeckAndAFatOneHasItsPoreFilled) {
+  constexpr double h = 0.25;
+  // Thin: 10 balls of 1.2 Å on a 3 Å circle; necks of radius sqrt(1.2² - (3 sin 18°)²) = 0.76 Å, pore of
+  // radius 1.8 Å: a cut (two faces of a neck, about 3.6 Å²) is far cheaper than a fill (about 20 Å²).
+  {
+    auto grid = sampled_box({40, 40, 16}, h, {-4.875, -4.875, -1.875}, [](const Vec3& p) { return ring_of_balls(p, 10, 3.0, 1.2); });
+    const auto repair = repair_outer_genus(grid, 0);
+    ASSERT_EQ(repair.per_handle.changes.size(), 1u);
+    const auto& cut = repair.per_handle.changes.front();
+    EXPECT_FALSE(cut.filled);
+    const double neck = 1.2 * 1.2 - std::pow(3.0 * std::sin(std::numbers::pi / 10), 2);
+    EXPECT_LT(cut.area_change, 1.5 * 2 * std::numbers::pi * neck);
+    expect_one_sphere(contour_isosurface(grid, 0));
+  }
+  // Fat: 8 balls of 1.6 Å on a 2 Å circle; necks of radius 1.4 Å (about 12 Å² to cut), a pore of radius
+  // about 0.4 Å: filling is far cheaper.
+  {
+    auto grid = sampled_box({36, 36, 20}, h, {-4.375, -4.375, -2.375}, [](const Vec3& p) { return ring_of_balls(p, 8, 2.0, 1.6); });
+    const auto before = mesh_components(contour_isosurface(grid, 0));
+    ASSERT_EQ(before.front().genus, 1);
+    const auto repair = repair_outer_genus(grid, 0);
+    ASSERT_EQ(repair.per_handle.changes.size(), 1u);
+    const auto& fill = repair.per_handle.changes.front();
+    EXPECT_TRUE(fill.filled);
+    EXPECT_LT(fill.area_change, 4.0);
+    expect_one_sphere(contour_isosurface(grid, 0));
+  }
+}
+
+TEST(Handles, ADetachedPieceWithHandlesIsNeitherRepairedNorDeleted) {
+  // The main body: a thick ring (one handle). Beside it, a small detached piece of genus 2 (two rings
+  // fused): cutting it away as a whole would also raise the Euler characteristic by one.
+  auto body = [](const Vec3& p) {
+    const Vec3 q{p[0] + 2.5, p[1], p[2]};
+    const double around = std::sqrt(q[0] * q[0] + q[1] * q[1]) - 2.0;
+    return 0.8 - std::sqrt(around * around + q[2] * q[2]);
+  };
+  auto piece = [](const Vec3& p) {
+    double best = -1e9;
+    for (const double centre : {2.6, 4.2}) {
+      const Vec3 q{p[0] - centre, p[1], p[2]};
+      const double around = std::sqrt(q[0] * q[0] + q[1] * q[1]) - 0.8;
+      best = std::max(best, 0.45 - std::sqrt(around * around + q[2] * q[2]));
+    }
+    return best;
+  };
+  auto grid = sampled_box({64, 32, 16}, 0.2, {-6.3, -3.1, -1.5}, [&](const Vec3& p) { return std::max(body(p), piece(p)); });
+  const auto before = mesh_components(contour_isosurface(grid, 0));
+  ASSERT_EQ(before.size(), 2u);
+  ASSERT_EQ(before[0].genus, 1);
+  ASSERT_EQ(before[1].genus, 2);
+  std::vector<bool> in_piece(grid.values.size());
+  for (std::int64_t k = 0; k < grid.size[2]; ++k)
+    for (std::int64_t j = 0; j < grid.size[1]; ++j)
+      for (std::int64_t i = 0; i < grid.size[0]; ++i) in_piece[static_cast<std::size_t>(grid.index(i, j, k))] = grid.point(i, j, k)[0] > 1.2;
+  const auto original = grid.values;
+  const auto repair = repair_outer_genus(grid, 0);
+  EXPECT_EQ(repair.method, "per-handle");
+  for (std::size_t s = 0; s < grid.values.size(); ++s)
+    if (in_piece[s]) ASSERT_EQ(grid.values[s], original[s]) << "sample " << s;
+  const auto after = mesh_components(contour_isosurface(grid, 0));
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_EQ(after[0].genus, 0);
+  EXPECT_EQ(after[1].genus, 2);
+}
+
+TEST(Handles, RepairsDoNotDependOnTheNumberOfThreadsAndChangesAddUpToTheAreaChange) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> step(-1.0, 1.0);
+  std::vector<Vec3> centres{{0, 0, 0}};
+  while (centres.size() < 60) {
+    Vec3 d{step(random), step(random), step(random)};
+    if (norm(d) < 0.2) continue;
+    Vec3 next = centres.back() + (1.1 / norm(d)) * d;
+    for (auto& x : next) x = std::clamp(x, -3.0, 3.0);
+    centres.push_back(next);
+  }
+  auto necklace = [&](const Vec3& p) {
+    double best = -1e9;
+    for (const auto& c : centres) best = std::max(best, 0.75 - norm(p - c));
+    return best;
+  };
+  auto one = sample(36, 0.25, {-4.5, -4.5, -4.5}, necklace);
+  auto three = one;
+  const double before = contour_area(one);
+  ASSERT_GT(mesh_components(contour_isosurface(one, 0)).front().genus, 1);
+  const auto a = repair_outer_genus(one, 0, 1);
+  const auto b = repair_outer_genus(three, 0, 3);
+  EXPECT_EQ(one.values, three.values);
+  ASSERT_EQ(a.per_handle.changes.size(), b.per_handle.changes.size());
+  ASSERT_EQ(a.method, "per-handle");
+  double sum = 0;
+  for (std::size_t c = 0; c < a.per_handle.changes.size(); ++c) {
+    EXPECT_EQ(a.per_handle.changes[c].samples, b.per_handle.changes[c].samples);
+    EXPECT_EQ(a.per_handle.changes[c].area_change, b.per_handle.changes[c].area_change);
+    EXPECT_GE(a.per_handle.changes[c].euler_change, 1);
+    sum += a.per_handle.changes[c].area_change;
+  }
+  EXPECT_NEAR(sum, a.per_handle.area_change, 1e-9);
+  EXPECT_NEAR(sum, contour_area(one) - before, 1e-9 * before);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "spheremap/mesh.hpp"
+#include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/grid.hpp"
 
 namespace spheremap {
@@ -14,25 +15,30 @@ struct HandleCut {
   bool filled = false;                        // true: tunnels were filled; false: handles were cut
   std::int64_t samples_removed = 0;           // samples whose side changed
   std::vector<std::int64_t> removed_samples;  // their grid indices, ascending
+  double area_change = 0;                     // change of the contour's area (all components), area units of the grid
 };
 
 /// Makes the solid {field > level} a topological ball, as seen by contour_isosurface (the Freudenthal
 /// triangulation of the grid), by topology-preserving growth (Kriegeskorte & Goebel 2001; Han, Xu &
 /// Prince 2002) in two ways, keeping the one that changes fewer samples:
-/// - cut: grow a set from the deepest inside sample, adding inside samples by decreasing value (ties by
-///   index) only when simple — their link (14 lattice neighbours, a triangulated sphere) meets the set
-///   in a non-empty connected part whose complement in the link is non-empty and connected (for a full
-///   subcomplex of a 2-sphere this is contractibility, by Alexander duality), so the set stays a ball;
-///   inside samples never added (where a loop would close) go just below `level`; other pieces too;
-/// - fill: the same growth of the outside from the whole grid border, by increasing value; outside
-///   samples never added (spanning tunnels, and cavities) go just above `level`.
+/// - cut: grow a set from the deepest inside sample of the largest inside piece, adding inside samples
+///   by decreasing value only when simple — their link (14 lattice neighbours, a triangulated sphere)
+///   meets the set in a non-empty connected part whose complement in the link is non-empty and
+///   connected (for a full subcomplex of a 2-sphere this is contractibility, by Alexander duality), so
+///   the set stays a ball; inside samples never added (where a loop would close) go just below `level`;
+///   other pieces too;
+/// - fill: the same growth of the outside from the whole grid border, by decreasing distance to the
+///   solid; outside samples never added (spanning tunnels, and cavities) go just above `level`.
 /// Preconditions: some sample > level, every border sample <= level. Throws std::invalid_argument
-/// otherwise. Returns what changed; modifies `field`.
+/// otherwise. Returns what changed (area_change as contour_isosurface(field, level, threads,
+/// minimum_fraction) measures it); modifies `field`.
 /// Both growths take samples from bucket queues: the solid by its value in steps of 1/256 of the grid
-/// spacing, the outside by its squared lattice distance to the solid; within a bucket the last offered
-/// first. Memory: one byte of state per sample, plus (for the outside growth) a float per sample.
-HandleCut cut_handles(Grid3<double>& field, double level);
-HandleCut cut_handles(Grid3<float>& field, double level);
+/// spacing, the outside by its squared lattice distance to the solid (exact below 65535 steps², capped
+/// there); within a bucket the first offered first. Memory: one byte of state per sample, plus (while
+/// the outside grows) two bytes of distance per sample, plus the queues (4 bytes per queued sample).
+/// `threads` (0: one per hardware thread) is used for the distance; the result does not depend on it.
+HandleCut cut_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
+HandleCut cut_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
 
 /// One local change of a per-handle repair: a connected set of samples moved to the other side.
 struct TopologyChange {
@@ -40,23 +46,49 @@ struct TopologyChange {
   std::vector<std::int64_t> samples;  // grid indices, ascending
   std::vector<double> original_values;  // the field at `samples` before the change (for undo)
   int euler_change = 0;               // change of the solid's Euler characteristic (handles removed)
+  /// Change of the contour's area (all components) that this change made, on the field as it was when
+  /// it was applied (changes are applied in order): the changes' areas add up to the contour's change.
+  double area_change = 0;
 };
 
 struct HandleRepair {
   std::vector<TopologyChange> changes;  // in the order applied
   std::int64_t samples_changed = 0;
+  double area_change = 0;               // the sum of the changes' area_change
 };
 
-/// Removes handles one at a time, each by the smaller of its two local changes. Both growths of
-/// cut_handles are computed; the samples each leaves out (cut membranes of handles, fill membranes of
-/// tunnels, and whole detached pieces and cavities) are split into connected clusters on the Freudenthal
-/// lattice. Clusters are tried smallest first; one is applied when it raises the Euler characteristic
-/// of the solid (the full subcomplex on inside samples, counted exactly on the 14-neighbour lattice),
-/// i.e. removes a handle without changing the components; pieces and cavities lower it and are left
-/// alone. This is a heuristic: the caller must check the genus of the result and fall back to
-/// cut_handles (undo_handle_repair restores the field). Same preconditions and throws as cut_handles.
-HandleRepair repair_handles(Grid3<double>& field, double level);
-HandleRepair repair_handles(Grid3<float>& field, double level);
+/// Removes the handles of the solid's main piece (the largest inside piece, as cut_handles grows it) by
+/// small local changes, each a cut of a handle or a fill of a tunnel, chosen to change the least contour
+/// area. Both growths of cut_handles are computed; the samples each leaves out (cut membranes of handles,
+/// fill membranes of tunnels, whole detached pieces and cavities) are split into connected clusters on
+/// the Freudenthal lattice. A cluster that touches the main piece and raises the Euler characteristic of
+/// the solid (the full subcomplex on inside samples, counted exactly on the 14-neighbour lattice) removes
+/// handles; pieces, cavities and membranes across tunnels of detached pieces are left alone.
+/// - Each such membrane moves to the section of its handle or tunnel with the fewest samples within 4 Å
+///   (a minimum vertex cut, by max-flow, between the far ends of its sides; for a cluster where several
+///   membranes meet, the union of the cuts isolating each side), when that changes less |area|, removes
+///   at least as many handles and stays apart from the other clusters of its side.
+/// - A cut and a fill that touch may remove the same handle twice (after one, the other no longer raises
+///   the Euler characteristic as much). Clusters of one side never touch, so the Euler change of any set
+///   of clusters is its clusters' own plus these pairwise losses. The set chosen removes the handles left
+///   (`handles_to_remove`, or as many as possible) at the least total |area change|: each cluster is worth
+///   handles x price - |area|, a chosen pair loses its lost handles x price, the best set for a price is
+///   a minimum cut (submodular), and the price is the smallest for which that set removes every handle
+///   (binary search), so that no expensive change is bought for a count beyond the genus, which only
+///   enclosed voids or split-off pieces can make up.
+/// - Chosen clusters are applied cheapest first, each only if it still raises the Euler characteristic on
+///   the field as it then is, until `handles_to_remove` are removed; the others complete the count if a
+///   chosen one did not.
+/// A change that encloses a void or splits off a piece also raises the Euler characteristic: the caller
+/// must check the genus of the result (repair_outer_genus does, and repeats) and fall back to cut_handles
+/// (undo_handle_repair restores the field). Areas as contour_isosurface(field, level, threads,
+/// minimum_fraction) measures them. Same preconditions and throws as cut_handles. Memory: as
+/// cut_handles, plus the clusters and, per moved membrane, about 20 bytes per sample of a box around it
+/// (boxes above 4M samples are not searched). Deterministic; independent of `threads`.
+HandleRepair repair_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0,
+                            int handles_to_remove = -1);
+HandleRepair repair_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0,
+                            int handles_to_remove = -1);
 
 /// Restores the field values a repair changed.
 void undo_handle_repair(Grid3<double>& field, const HandleRepair& repair);
@@ -73,14 +105,16 @@ struct GenusRepair {
   HandleRepair per_handle;        // the changes, when method == "per-handle"
   HandleCut global;               // when method is "fill" or "cut"
   std::int64_t samples_changed = 0;
+  int rounds = 0;                 // rounds of repair_handles until the outer surface had genus 0 ("per-handle")
 };
 
 /// Makes the largest component of the contour {field = level} (the outer surface of a molecule) genus 0
-/// with the smallest change we can find: repair_handles, checked by contouring, repeated on the changed
-/// field while it still changes something (at most 4 rounds); if the largest component still has
-/// handles, the field is restored and cut_handles applied (always genus 0, one
-/// component). Other components (detached pieces, cavities) are left as they are by the per-handle
-/// repair. Same preconditions and throws as cut_handles. `threads` is passed to contour_isosurface.
+/// with the smallest change we can find: repair_handles (asked for the outer genus), checked by
+/// contouring, repeated on the changed field (asked for the genus left) while it still changes something
+/// (at most 4 rounds); if the largest component still has handles, the field is restored and cut_handles
+/// applied (always genus 0, one component). Other components (detached pieces, cavities) are left as they
+/// are by the per-handle repair. Same preconditions and throws as cut_handles. `threads` is passed to
+/// contour_isosurface and the growths; the result does not depend on it.
 GenusRepair repair_outer_genus(Grid3<double>& field, double level, int threads = 0);
 GenusRepair repair_outer_genus(Grid3<float>& field, double level, int threads = 0);
 

@@ -18,8 +18,8 @@ struct SurfaceOptions {
   /// solvent_excluded_field, 4 for solvent_excluded_field_float and solvent_excluded_surface); the field
   /// is built in place, with no other per-sample array. The mesh comes on top (see solvent_excluded_surface).
   double max_grid_bytes = 4e9;
-  /// Bytes per grid sample that the caller will need beside the field (e.g. 5 for the handle repair:
-  /// a state byte and a float distance per sample); counted against max_grid_bytes too.
+  /// Bytes per grid sample that the caller will need beside the field (e.g. 3 for the handle repair:
+  /// a state byte and two bytes of distance per sample); counted against max_grid_bytes too.
   double extra_bytes_per_sample = 0;
   /// false: only probe positions reachable from outside the molecule carve (MSMS's outer surface;
   /// enclosed cavities are filled), also through channels narrower than the grid. true: probe positions
