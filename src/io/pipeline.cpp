@@ -559,6 +559,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"split_edges", splits},
         {"meridian_length", map.meridian.size()},
         {"meridian_method", map.meridian_method},
+        {"meridian_round", map.meridian_round},
         {"solver", map.solver_used},
         {"gauss_seidel_sweeps", map.gauss_seidel_sweeps},
         {"gauss_seidel_converged", map.gauss_seidel_converged},

@@ -295,6 +295,179 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
 
 }  // namespace
 
+struct ReusableCholesky::State {
+  const VertexRings* rings;
+  std::vector<std::int32_t> last;
+  std::vector<std::int32_t> row_of_vertex;  // permuted row of each structural unknown, -1 if always fixed
+  std::vector<std::int32_t> vertex_of_row;
+  // Source of each stored entry of the lower triangle, column by column: a slot (row vertex's ring
+  // index of the column vertex) for couplings, or -1 - v for the diagonal of vertex v.
+  std::vector<std::int64_t> entry_source;
+  Cholmod cholmod;
+  cholmod_sparse* lower = nullptr;
+  bool factorized = false;
+  ~State() {
+    if (lower) cholmod_free_sparse(&lower, &cholmod.common);
+  }
+};
+
+ReusableCholesky::ReusableCholesky(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                   const std::vector<char>& always_fixed, const std::vector<std::int32_t>& last)
+    : state_(std::make_unique<State>()) {
+  keep_openmp_serial();
+  auto& s = *state_;
+  s.rings = &rings;
+  s.last = last;
+  const auto n = rings.vertex_count();
+  // The fill-reducing order of the unknowns that are not in `last`, then `last` in its order.
+  std::vector<char> ordered_apart = always_fixed;
+  for (auto v : last) ordered_apart[v] = 1;
+  std::vector<std::int32_t> unknown_index(n, -1);
+  std::int32_t ordered = 0;
+  for (std::int32_t v = 0; v < n; ++v)
+    if (!ordered_apart[v]) unknown_index[v] = ordered++;
+  std::vector<Vec3> unknown_positions(static_cast<std::size_t>(ordered));
+  std::vector<std::int32_t> vertex_of_unknown(static_cast<std::size_t>(ordered));
+  for (std::int32_t v = 0; v < n; ++v)
+    if (unknown_index[v] >= 0) unknown_positions[unknown_index[v]] = positions[v], vertex_of_unknown[unknown_index[v]] = v;
+  // Only the pattern matters for the order: uniform weights.
+  const EdgeWeights uniform{std::vector<double>(rings.neighbors.size(), 1.0), true, 0};
+  const HarmonicProblem pattern_problem{&rings, &uniform, &positions, ordered_apart, {}};
+  const auto order = nested_dissection_order(problem_matrix(pattern_problem, unknown_index, ordered), unknown_positions);
+  s.row_of_vertex.assign(n, -1);
+  for (std::int32_t k = 0; k < ordered; ++k) s.vertex_of_row.push_back(vertex_of_unknown[order[k]]);
+  for (auto v : last) s.vertex_of_row.push_back(v);
+  const auto unknowns = static_cast<std::int32_t>(s.vertex_of_row.size());
+  for (std::int32_t k = 0; k < unknowns; ++k) s.row_of_vertex[s.vertex_of_row[k]] = k;
+  // The lower triangle in the permuted order: column k holds its diagonal and every neighbour whose
+  // row is below k, with the slot that supplies the weight.
+  std::size_t entries = 0;
+  for (std::int32_t k = 0; k < unknowns; ++k) {
+    ++entries;
+    for (auto w : rings.ring(s.vertex_of_row[k])) entries += s.row_of_vertex[w] > k;
+  }
+  s.lower = cholmod_allocate_sparse(unknowns, unknowns, entries, 1, 1, -1, CHOLMOD_REAL, &s.cholmod.common);
+  if (!s.lower) throw std::bad_alloc();
+  auto* column_start = static_cast<int*>(s.lower->p);
+  auto* row_index = static_cast<int*>(s.lower->i);
+  s.entry_source.reserve(entries);
+  std::vector<std::pair<int, std::int64_t>> column;
+  std::int64_t next = 0;
+  for (std::int32_t k = 0; k < unknowns; ++k) {
+    column_start[k] = static_cast<int>(next);
+    const auto v = s.vertex_of_row[k];
+    column.clear();
+    column.emplace_back(k, -1 - static_cast<std::int64_t>(v));
+    for (auto w : rings.ring(v)) {
+      const auto row = s.row_of_vertex[w];
+      if (row <= k) continue;  // always fixed (-1), or in the upper triangle
+      // The weight of (w, v) as row w reads it.
+      const auto w_ring = rings.ring(w);
+      std::size_t back = 0;
+      while (w_ring[back] != v) ++back;
+      column.emplace_back(row, rings.offsets[w] + static_cast<std::int64_t>(back));
+    }
+    std::sort(column.begin(), column.end());
+    for (const auto& [row, source] : column) {
+      row_index[next] = row;
+      s.entry_source.push_back(source);
+      ++next;
+    }
+  }
+  column_start[unknowns] = static_cast<int>(next);
+  // CHOLMOD postorders the elimination tree by default, which can move `last` away from the end (the
+  // fill is the same either way; the supernodal factorization was not measurably slower without it).
+  s.cholmod.common.postorder = false;
+  s.cholmod.factor = cholmod_analyze(s.lower, &s.cholmod.common);
+  if (!s.cholmod.factor || s.cholmod.common.status != CHOLMOD_OK)
+    throw std::runtime_error("CHOLMOD's symbolic analysis failed");
+}
+
+ReusableCholesky::~ReusableCholesky() = default;
+
+const std::vector<std::int32_t>& ReusableCholesky::last() const { return state_->last; }
+
+bool ReusableCholesky::factorize(const HarmonicProblem& problem) {
+  auto& s = *state_;
+  const auto& rings = *s.rings;
+  const auto& w = problem.weights->values;
+  const auto unknowns = static_cast<std::int32_t>(s.vertex_of_row.size());
+  s.factorized = false;
+  if (unknowns == 0) return s.factorized = true;
+  auto* value = static_cast<double*>(s.lower->x);
+  const auto* row_index = static_cast<const int*>(s.lower->i);
+  for (std::size_t e = 0; e < s.entry_source.size(); ++e) {
+    const auto source = s.entry_source[e];
+    if (source < 0) {
+      const auto v = static_cast<std::int32_t>(-1 - source);
+      if (problem.fixed[v]) {
+        value[e] = 1;  // decoupled row: x_v = b_v
+        continue;
+      }
+      double total = 0;
+      for (auto slot = rings.offsets[v]; slot < rings.offsets[v + 1]; ++slot) total += w[slot];
+      value[e] = total;
+    } else {
+      // A slot of the row vertex's ring; a coupling to or from a fixed vertex is 0.
+      const auto r = s.vertex_of_row[row_index[e]];
+      value[e] = problem.fixed[r] || problem.fixed[rings.neighbors[source]] ? 0.0 : -w[source];
+    }
+  }
+  cholmod_factorize(s.lower, s.cholmod.factor, &s.cholmod.common);
+  s.factorized = s.cholmod.common.status == CHOLMOD_OK && s.cholmod.factor->minor >= static_cast<std::size_t>(unknowns);
+  return s.factorized;
+}
+
+void ReusableCholesky::solve(const HarmonicProblem& problem, std::vector<double>& x, bool last_fixed) {
+  auto& s = *state_;
+  if (!s.factorized) throw std::logic_error("ReusableCholesky::solve before a successful factorize");
+  const auto& rings = *s.rings;
+  const auto& w = problem.weights->values;
+  const auto unknowns = static_cast<std::int32_t>(s.vertex_of_row.size());
+  if (unknowns == 0) return;
+  const auto kept = unknowns - (last_fixed ? static_cast<std::int32_t>(s.last.size()) : 0);
+  cholmod_dense* rhs = cholmod_zeros(static_cast<std::size_t>(unknowns), 1, CHOLMOD_REAL, &s.cholmod.common);
+  if (!rhs) throw std::bad_alloc();
+  auto* b = static_cast<double*>(rhs->x);
+  for (std::int32_t k = 0; k < kept; ++k) {
+    const auto v = s.vertex_of_row[k];
+    if (problem.fixed[v]) {
+      b[k] = x[v];
+      continue;
+    }
+    const auto ring = rings.ring(v);
+    double sum = 0;
+    for (std::size_t j = 0; j < ring.size(); ++j) {
+      const auto slot = rings.offsets[v] + static_cast<std::int64_t>(j);
+      if (problem.fixed[ring[j]]) sum += w[slot] * neighbour_value(problem, x, slot, ring[j]);
+    }
+    b[k] = sum;
+  }
+  cholmod_dense* solution = nullptr;
+  if (!last_fixed) {
+    solution = cholmod_solve(CHOLMOD_A, s.cholmod.factor, rhs, &s.cholmod.common);
+  } else {
+    // With `last` ordered last, the leading block of L is the Cholesky factor of the system without
+    // them: forward substitution, then the trailing part of the intermediate set to zero (so the
+    // trailing unknowns come out 0 and drop out of the leading rows), then back substitution.
+    cholmod_dense* forward = cholmod_solve(CHOLMOD_L, s.cholmod.factor, rhs, &s.cholmod.common);
+    if (forward) {
+      auto* y = static_cast<double*>(forward->x);
+      std::fill(y + kept, y + unknowns, 0.0);
+      solution = cholmod_solve(CHOLMOD_Lt, s.cholmod.factor, forward, &s.cholmod.common);
+      cholmod_free_dense(&forward, &s.cholmod.common);
+    }
+  }
+  cholmod_free_dense(&rhs, &s.cholmod.common);
+  if (!solution) throw std::runtime_error("the Cholesky solve failed");
+  const auto* values = static_cast<const double*>(solution->x);
+  for (std::int32_t k = 0; k < kept; ++k) {
+    const auto v = s.vertex_of_row[k];
+    if (!problem.fixed[v]) x[v] = values[k];
+  }
+  cholmod_free_dense(&solution, &s.cholmod.common);
+}
+
 SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x, Solver solver, double tolerance,
                           std::int64_t max_sweeps) {
   if (solver == Solver::kGaussSeidel) return solve_gauss_seidel(problem, x, tolerance, max_sweeps);

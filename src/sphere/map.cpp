@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <unordered_set>
 
@@ -33,12 +35,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kPi = std::numbers::pi;
 constexpr double kRingZ = 1.0;  // Z: the circumpolar rings sit at z = ±Z
-// Re-weighting against collapse, damped: Yoshizawa's full step (exponent 1/2, unbounded) overshoots and
-// oscillates on limbs (measured on libigl_arm.obj: 9 rounds, 345 folds left); a quarter power with at
-// most a 4x change per round per edge converges in 6–27 rounds on every mesh of ../shared/data/meshes.
-constexpr double kReweightingExponent = 0.25;
-constexpr double kReweightingStep = 4.0;
-constexpr int kReweightingPatience = 8;  // rounds without a better map before giving up
+// Re-weighting against collapse (reweight_against_collapse; the README's "The map" explains the choices).
+// Each vertex whose normalized area ratio r (over its star) is below kReweightingTarget gets a step
+// ln g += kReweightingExponent · ln(r / target), averaged twice over the 1-ring and at most
+// kReweightingMaxStep per round; a round is kept only if it improves the map, else the step limit is
+// quartered (patience kReweightingPatience). Measured on ../shared/data/meshes, the molecular surfaces of
+// BENCHMARKS.md and generated cups: a full step (exponent 1) or equalizing every ratio towards 1 (the
+// target 1) fold tens to thousands of triangles; exponent 0.75 with a 1e-2 target needs 1-5 rounds.
+constexpr double kReweightingExponent = 0.75;
+constexpr double kReweightingTarget = 1e-2;
+constexpr int kReweightingSmoothing = 2;
+constexpr double kReweightingMaxStep = 13.815510557964274;  // ln 1e6
+constexpr int kReweightingPatience = 3;
+// With at most this many folded and collapsed triangles, untangling is tried before another round.
+constexpr std::int64_t kUntanglingAttempt = 100;
 
 class StageTimer {
  public:
@@ -110,6 +120,7 @@ struct PlanarCoordinates {
   std::vector<double> z, phi;
   std::vector<std::int32_t> meridian;
   bool meridian_by_descent = true;
+  int meridian_round = 0;  // the round whose z the meridian was found for (0: the plain map)
   detail::SolveStats z_stats, phi_stats;
 };
 
@@ -128,8 +139,13 @@ bool is_west_of(const VertexRings& rings, std::int32_t b, std::int32_t up, std::
   return false;
 }
 
+// z, the meridian and φ. The re-weighting rounds pass `factor` (analysed once, with the meridian
+// interior ordered last) and the meridian of the best round so far, which is kept while z still
+// strictly decreases along it: then z and φ come from one numeric factorization (ReusableCholesky).
 PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std::int32_t south,
-                               const detail::EdgeWeights& weights, const MapOptions& options) {
+                               const detail::EdgeWeights& weights, const MapOptions& options,
+                               detail::ReusableCholesky* factor = nullptr, const PlanarCoordinates* kept = nullptr,
+                               int round = 0) {
   const auto& rings = work.rings;
   const auto n = rings.vertex_count();
   const auto north_ring = rings.ring(north);
@@ -147,8 +163,14 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
   planar.z[south] = -kRingZ;
   for (auto v : north_ring) z_problem.fixed[v] = 1, planar.z[v] = kRingZ;
   for (auto v : south_ring) z_problem.fixed[v] = 1, planar.z[v] = -kRingZ;
-  planar.z_stats = detail::solve_harmonic(z_problem, planar.z, options.solver, options.gauss_seidel_tolerance,
-                                          options.gauss_seidel_max_sweeps);
+  const bool factorized = factor && factor->factorize(z_problem);
+  if (factorized) {
+    factor->solve(z_problem, planar.z);
+    planar.z_stats = {"cholmod-llt", 0, true};
+  } else {
+    planar.z_stats = detail::solve_harmonic(z_problem, planar.z, options.solver, options.gauss_seidel_tolerance,
+                                            options.gauss_seidel_max_sweeps);
+  }
 
   // Boundary meridian: steepest descent in the strict total order (z, index), so that ties cannot stall
   // or loop and no edge can join two non-consecutive meridian vertices.
@@ -163,6 +185,20 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
     }
     return best;
   };
+  // A meridian kept from an earlier round is still a chord-free path from ring to ring (a property of
+  // the graph); if z strictly decreases along it, the boundary of the (z, φ) rectangle is again traversed
+  // monotonically and Floater's theorem applies as for a fresh steepest descent.
+  planar.meridian_round = round;
+  if (kept) {
+    const auto& path = kept->meridian;
+    bool descends = path.size() >= 2;
+    for (std::size_t m = 0; descends && m + 1 < path.size(); ++m) descends = lower(path[m + 1], path[m]);
+    if (descends) {
+      planar.meridian = path;
+      planar.meridian_by_descent = kept->meridian_by_descent;
+      planar.meridian_round = kept->meridian_round;
+    }
+  }
   std::vector<std::int32_t> starts(north_ring.begin(), north_ring.end());
   // Start where the descent is steepest; the rest are fallbacks should a descent stall numerically.
   std::sort(starts.begin(), starts.end(), [&](std::int32_t a, std::int32_t b) {
@@ -171,6 +207,7 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
     return la != lb ? lower(la, lb) : a < b;
   });
   for (auto start : starts) {
+    if (!planar.meridian.empty()) break;
     std::vector<std::int32_t> path{start};
     auto current = lowest_neighbour(start);
     bool stalled = current < 0;
@@ -263,8 +300,17 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
       }
     }
   }
-  planar.phi_stats = detail::solve_harmonic(phi_problem, planar.phi, options.solver, options.gauss_seidel_tolerance,
-                                            options.gauss_seidel_max_sweeps);
+  const std::vector<std::int32_t> meridian_interior(meridian.begin() + 1, meridian.end() - 1);
+  if (factorized && factor->last() == meridian_interior) {
+    factor->solve(phi_problem, planar.phi, true);
+    planar.phi_stats = {"cholmod-llt", 0, true};
+  } else if (factor && factor->factorize(phi_problem)) {
+    factor->solve(phi_problem, planar.phi);
+    planar.phi_stats = {"cholmod-llt", 0, true};
+  } else {
+    planar.phi_stats = detail::solve_harmonic(phi_problem, planar.phi, options.solver, options.gauss_seidel_tolerance,
+                                              options.gauss_seidel_max_sweeps);
+  }
   return planar;
 }
 
@@ -306,6 +352,147 @@ std::vector<double> vertex_area_ratios(const WorkingMesh& work, const std::vecto
 std::vector<Vec3> all_sphere_points(const PlanarCoordinates& planar, std::int32_t north, std::int32_t south,
                                     double c) {
   return to_sphere(planar, north, south, c, static_cast<std::int32_t>(planar.z.size()));
+}
+
+struct Candidate {
+  PlanarCoordinates planar;
+  std::vector<Vec3> sphere;  // of the input's vertices, before the superposition
+  Certificate certificate;
+};
+
+// The last steps of every map: superposition (first, so that the certificate is of the very numbers
+// that are written), certificate, and untangling on the sphere when the map is not certified but covers
+// the sphere once (local moves can remove folds and collapse, not change how often the image covers it).
+struct Finished {
+  std::vector<Vec3> sphere;
+  Superposition superposition;
+  Certificate certificate;
+  std::int64_t untangling_moves = 0;
+  bool untangled = false;  // untangling ran
+};
+
+Finished finish_map(const Mesh& mesh, const VertexRings& input_rings, std::vector<Vec3> sphere,
+                    const MapOptions& options, StageTimer* timer = nullptr) {
+  Finished finished;
+  finished.superposition = superpose_sphere_on_surface(mesh.positions, sphere);
+  for (auto& p : sphere) p = rotate(finished.superposition.rotation, p);
+  if (timer) timer->lap("superpose");
+  finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  if (options.repair && !finished.certificate.certified() && std::abs(finished.certificate.coverage - 1) < 1e-9) {
+    finished.untangling_moves =
+        detail::untangle_on_sphere(mesh, input_rings, sphere, options.collapse_floor, options.max_untangling_sweeps);
+    finished.untangled = true;
+    if (timer) timer->lap("untangle");
+    finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  }
+  if (timer) timer->lap("certify");
+  finished.sphere = std::move(sphere);
+  return finished;
+}
+
+struct ReweightingOutcome {
+  Candidate best;
+  int rounds = 0;
+  std::optional<Finished> finished;  // the best round finished (superposed, untangled, certified), if tried
+};
+
+// Collapse: harmonic z and φ decay exponentially along pockets and limbs that lead to neither pole, so
+// their triangles keep 1e-9 to 1e-22 of their share of the sphere. Each vertex j gets a gain g_j and
+// edge (i, j) weighs base_ij · g_i · g_j (symmetric base weights: the Cholesky path; otherwise
+// base_ij · g_j, the same solution up to row scaling): lowering the gains of a collapsed region lowers its
+// conductance, which spreads the harmonic functions into it. All weights stay positive and z and φ share
+// them, so the planar map stays one-to-one (Floater 2003).
+ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh& work, std::int32_t north,
+                                             std::int32_t south, double mercator_c,
+                                             const detail::EdgeWeights& base, const MapOptions& options,
+                                             const VertexRings& input_rings, Candidate plain) {
+  const auto n = static_cast<std::int32_t>(mesh.positions.size());
+  const auto count = work.rings.vertex_count();
+  ReweightingOutcome outcome{std::move(plain), 0, std::nullopt};
+  // The sparsity pattern is the same in every round: one ordering and symbolic analysis (again only
+  // if the kept meridian changes), one numeric factorization per round for both z and φ.
+  const bool reuse = options.solver == Solver::kDirect && base.symmetric;
+  std::vector<char> always_fixed(count, 0);
+  always_fixed[north] = always_fixed[south] = 1;
+  for (auto v : work.rings.ring(north)) always_fixed[v] = 1;
+  for (auto v : work.rings.ring(south)) always_fixed[v] = 1;
+  std::unique_ptr<detail::ReusableCholesky> factor;
+
+  std::vector<double> log_gain(count, 0.0), proposal(count), signal(count), smoothed(count);
+  auto ratio = vertex_area_ratios(work, all_sphere_points(outcome.best.planar, north, south, mercator_c));
+  double max_step = kReweightingMaxStep;
+  int rejections = 0;
+  detail::EdgeWeights weights = base;
+  for (int round = 1; round <= options.max_reweighting_rounds; ++round) {
+    // Only vertices below the target move (one-sided: the rest of the map stays the paper's, and no
+    // noise from ratios around 1 accumulates in the gains); the 1-ring averages keep neighbouring gains
+    // close, so that the systems stay well scaled and a single vertex cannot run away.
+    for (std::int32_t v = 0; v < count; ++v)
+      signal[v] = std::min(0.0, std::log(std::max(ratio[v], 1e-300) / kReweightingTarget));
+    for (int pass = 0; pass < kReweightingSmoothing; ++pass) {
+      for (std::int32_t v = 0; v < count; ++v) {
+        double sum = signal[v];
+        for (auto w : work.rings.ring(v)) sum += signal[w];
+        smoothed[v] = sum / (1 + work.rings.degree(v));
+      }
+      signal.swap(smoothed);
+    }
+    double top = -INFINITY, largest_step = 0;
+    for (std::int32_t v = 0; v < count; ++v) {
+      const double step = std::max(kReweightingExponent * signal[v], -max_step);
+      largest_step = std::max(largest_step, -step);
+      proposal[v] = log_gain[v] + step;
+      top = std::max(top, proposal[v]);
+    }
+    if (largest_step == 0) break;  // every vertex is above the target: what is left is for untangling
+    // Only ratios of gains matter: the largest is 1, and none below e^-300 keeps every weight positive.
+    for (auto& g : proposal) g = std::max(g - top, -300.0);
+    for (std::int32_t v = 0; v < count; ++v) {
+      const auto ring = work.rings.ring(v);
+      const double gain_v = std::exp(proposal[v]);
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
+        const double gain_w = std::exp(proposal[ring[k]]);
+        // g_v · g_w is the same product seen from either end: the weights stay exactly symmetric.
+        weights.values[slot] = base.values[slot] * (base.symmetric ? gain_v * gain_w : gain_w);
+      }
+    }
+    if (reuse) {
+      const auto& meridian = outcome.best.planar.meridian;
+      const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
+      if (!factor || factor->last() != interior)
+        factor = std::make_unique<detail::ReusableCholesky>(work.rings, work.positions, always_fixed, interior);
+    }
+    Candidate candidate;
+    candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar, round);
+    candidate.sphere = to_sphere(candidate.planar, north, south, mercator_c, n);
+    candidate.certificate = certify_sphere_map(mesh, candidate.sphere, options.collapse_floor);
+    outcome.rounds = round;
+    // Kept only if no worse in both the number of bad triangles and the smallest area ratio, and better
+    // in one: a round that trades fewer bad triangles for a deeper collapse elsewhere is an overshoot.
+    const auto& c = candidate.certificate;
+    const auto& b = outcome.best.certificate;
+    const auto bad = c.collapsed + c.folded, best_bad = b.collapsed + b.folded;
+    const bool accepted = bad <= best_bad && c.min_area_ratio >= b.min_area_ratio &&
+                          (bad < best_bad || c.min_area_ratio > b.min_area_ratio);
+    if (!accepted) {
+      max_step /= 4;
+      if (++rejections >= kReweightingPatience) break;
+      continue;
+    }
+    log_gain = proposal;
+    outcome.best = std::move(candidate);
+    outcome.finished.reset();
+    ratio = vertex_area_ratios(work, all_sphere_points(outcome.best.planar, north, south, mercator_c));
+    max_step = std::min(2 * max_step, kReweightingMaxStep);
+    rejections = 0;
+    // Few bad triangles left: untangling may certify this round, far more cheaply than another round.
+    if (bad <= kUntanglingAttempt) {
+      outcome.finished = finish_map(mesh, input_rings, outcome.best.sphere, options);
+      if (outcome.finished->certificate.certified()) break;
+    }
+  }
+  return outcome;
 }
 
 }  // namespace
@@ -407,75 +594,26 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   result.plain_certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
   timer.lap("certify-plain");
 
+  // The input's rings: the untangling works on the input's triangles, not the split working mesh.
+  std::optional<VertexRings> unsplit_rings;
+  const VertexRings& input_rings =
+      work.rings.vertex_count() == n ? work.rings : unsplit_rings.emplace(build_vertex_rings(n, mesh.triangles));
+  std::optional<Finished> finished;
   if (options.repair && result.method == "poles-and-rings" && result.plain_certificate.collapsed > 0) {
-    // Collapse: harmonic z and φ decay exponentially along limbs that lead to neither pole. Re-weighting
-    // each edge by the area ratio at its far end (Yoshizawa, Belyaev & Seidel 2004, in (z, φ)) pulls
-    // every vertex towards its less collapsed neighbours, which spreads the limb; the weights stay
-    // positive, so the planar map stays one-to-one (Floater 2003).
-    auto best_sphere = sphere;
-    auto best_planar = planar;
-    auto best_certificate = result.plain_certificate;
-    int rounds_without_progress = 0;
-    // Each vertex j gets a gain g_j and the weight of edge (i, j) becomes base_ij * g_j. Multiplying
-    // row i by g_i gives the same solution with base_ij * g_i * g_j, which is symmetric whenever the base
-    // weights are: the re-weighted systems stay on the Cholesky path.
-    const detail::EdgeWeights base = weights;
-    std::vector<double> gain(work.positions.size(), 1.0);
-    for (int round = 1; round <= options.max_reweighting_rounds; ++round) {
-      const auto ratio = vertex_area_ratios(work, all_sphere_points(planar, north, south, result.mercator_c));
-      double log_mean = 0;
-      for (std::size_t v = 0; v < gain.size(); ++v) {
-        gain[v] *= std::clamp(std::pow(ratio[v], kReweightingExponent), 1 / kReweightingStep, kReweightingStep);
-        log_mean += std::log(gain[v]) / static_cast<double>(gain.size());
-      }
-      // Only ratios of gains matter: keep them centred on 1 so that no weight over- or underflows.
-      for (auto& g : gain) g /= std::exp(log_mean);
-      for (std::int32_t v = 0; v < work.rings.vertex_count(); ++v) {
-        const auto ring = work.rings.ring(v);
-        for (std::size_t k = 0; k < ring.size(); ++k) {
-          const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
-          weights.values[slot] = base.values[slot] * gain[ring[k]] * (base.symmetric ? gain[v] : 1.0);
-        }
-      }
-      planar = solve_planar(work, north, south, weights, options);
-      sphere = to_sphere(planar, north, south, result.mercator_c, n);
-      const auto certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
-      result.reweighting_rounds = round;
-      const bool better = certificate.collapsed + certificate.folded < best_certificate.collapsed + best_certificate.folded ||
-                          (certificate.collapsed + certificate.folded == best_certificate.collapsed + best_certificate.folded &&
-                           certificate.min_area_ratio > best_certificate.min_area_ratio);
-      if (better) {
-        best_sphere = sphere;
-        best_planar = planar;
-        best_certificate = certificate;
-        rounds_without_progress = 0;
-      } else if (++rounds_without_progress >= kReweightingPatience) {
-        break;
-      }
-      if (certificate.collapsed == 0) break;
-    }
-    sphere = std::move(best_sphere);
-    planar = std::move(best_planar);
+    auto outcome = reweight_against_collapse(mesh, work, north, south, result.mercator_c, weights, options, input_rings,
+                                             Candidate{planar, sphere, result.plain_certificate});
+    planar = std::move(outcome.best.planar);
+    sphere = std::move(outcome.best.sphere);
+    finished = std::move(outcome.finished);
+    result.reweighting_rounds = outcome.rounds;
     result.solver_used = planar.z_stats.solver;
     timer.lap("reweight");
   }
-
-  // Superposition first, so that the certificate is of the very numbers that are written.
-  result.superposition = superpose_sphere_on_surface(mesh.positions, sphere);
-  for (auto& p : sphere) p = rotate(result.superposition.rotation, p);
-  timer.lap("superpose");
-
-  auto certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
-  // Local moves can remove folds and collapse but cannot change how often the image covers the sphere.
-  if (options.repair && !certificate.certified() && std::abs(certificate.coverage - 1) < 1e-9) {
-    result.untangling_moves =
-        detail::untangle_on_sphere(mesh, work.rings.vertex_count() == n ? work.rings : build_vertex_rings(n, mesh.triangles),
-                                   sphere, options.collapse_floor, options.max_untangling_sweeps);
-    timer.lap("untangle");
-    certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
-  }
-  result.certificate = std::move(certificate);
-  timer.lap("certify");
+  if (!finished) finished = finish_map(mesh, input_rings, std::move(sphere), options, &timer);
+  result.superposition = finished->superposition;
+  result.untangling_moves = finished->untangling_moves;
+  result.certificate = std::move(finished->certificate);
+  sphere = std::move(finished->sphere);
 
   result.theta.resize(n);
   result.phi.resize(n);
@@ -492,6 +630,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   if (result.method == "poles-and-rings") {
     result.meridian = planar.meridian;
     result.meridian_method = planar.meridian_by_descent ? "steepest-descent" : "shortest-path";
+    result.meridian_round = planar.meridian_round;
   }
   result.sphere = std::move(sphere);
   return result;

@@ -72,6 +72,10 @@ struct SphereMap {
   /// "steepest-descent" (the paper's), or "shortest-path" when every descent stalls at an interior
   /// minimum of z, which only weights that can be negative (cotangent) allow.
   std::string meridian_method;
+  /// The re-weighting round whose z the meridian was found for (0: the plain map's). Rounds keep the
+  /// meridian of the best map so far while their z strictly decreases along it (a chord-free path from
+  /// ring to ring, so Floater's theorem applies as to a fresh one), and find a new one otherwise.
+  int meridian_round = 0;
 
   std::string solver_used;  // e.g. "cholmod-llt", "umfpack-lu", "gauss-seidel"
   std::int64_t gauss_seidel_sweeps = 0;
