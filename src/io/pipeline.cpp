@@ -565,6 +565,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"gauss_seidel_converged", map.gauss_seidel_converged},
         {"weight_fallback_rows", map.weight_fallback_rows},
         {"reweighting_rounds", map.reweighting_rounds},
+        {"equalizing_rounds", map.equalizing_rounds},
         {"untangling_moves", map.untangling_moves},
         {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
         {"superposition_rmsd", map.superposition.rmsd},

@@ -39,6 +39,10 @@ struct MapOptions {
   double gauss_seidel_tolerance = 1e-13;
   std::int64_t gauss_seidel_max_sweeps = 200000;
   int max_reweighting_rounds = 40;
+  /// After re-weighting has made the map certified: at most this many further rounds that equalize
+  /// area ratios, each kept only if the map stays certified and its mean area distortion drops
+  /// (0: none; the map is then the first certified one, with limbs small on the sphere).
+  int max_equalizing_rounds = 12;
   int max_untangling_sweeps = 200;
 };
 
@@ -84,6 +88,7 @@ struct SphereMap {
 
   Certificate plain_certificate;  // the paper's algorithm alone (before any repair)
   int reweighting_rounds = 0;
+  int equalizing_rounds = 0;  // of reweighting_rounds, the rounds kept by equalizing after certification
   std::int64_t untangling_moves = 0;
   Certificate certificate;  // of the final map
   std::vector<StageTime> timings;
