@@ -57,6 +57,11 @@ constexpr std::int64_t kUntanglingAttempt = 100;
 constexpr double kEqualizingExponent = 0.25;
 constexpr double kEqualizingStep = 4.0;
 constexpr int kEqualizingPatience = 2;
+// Equalizing stops once a kept round lowers the mean area distortion by less than this fraction: the
+// first rounds give most of the gain (ajc_horse: 1.83, 1.04, 0.90, 0.59, 0.50), later ones cost a
+// factorization each for a few percent.
+constexpr double kEqualizingMinGain = 0.02;
+constexpr int kEqualizingMinRounds = 3;  // before that, a small gain may precede large ones (ajc_beast)
 
 class StageTimer {
  public:
@@ -574,11 +579,13 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     ++outcome.rounds;
     ++outcome.equalizing_rounds;
     log_gain = proposal;
+    const bool small_gain = candidate_distortion > (1 - kEqualizingMinGain) * distortion;
     distortion = candidate_distortion;
     outcome.best = std::move(candidate);
     outcome.finished = std::move(untangled);
     rejections = 0;
     step_limit = kEqualizingStep;
+    if (small_gain && outcome.equalizing_rounds >= kEqualizingMinRounds) break;
   }
   return outcome;
 }
