@@ -621,6 +621,7 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
       {"solver", to_string(job.map.solver)},
       {"repair", job.map.repair},
       {"collapse_floor", job.map.collapse_floor},
+      {"max_equalizing_rounds", job.map.max_equalizing_rounds},
       {"weld_tolerance", job.prepare.weld_tolerance},
       {"component", job.prepare.component == kComponentLargest  ? Json("largest")
                     : job.prepare.component == kComponentRefuse ? Json("refuse")

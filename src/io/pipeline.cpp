@@ -501,6 +501,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"solver", to_string(options.map.solver)},
         {"repair", options.map.repair},
         {"collapse_floor", options.map.collapse_floor},
+        {"max_equalizing_rounds", options.map.max_equalizing_rounds},
         {"weld_tolerance", options.prepare.weld_tolerance},
         {"poles_given", map.poles_from_options}}},
       {"structure",

@@ -69,7 +69,8 @@ TEST_F(Cli, HelpListsTheOptions) {
   EXPECT_NE(top.output.find("map"), std::string::npos);
   const auto map = run_cli("map --help");
   EXPECT_EQ(map.exit_code, 0);
-  for (const char* option : {"--weights", "--solver", "--poles", "--component", "--ascii", "--weld-tolerance", "--no-repair"})
+  for (const char* option : {"--weights", "--solver", "--poles", "--component", "--ascii", "--weld-tolerance", "--no-repair",
+                             "--equalizing-rounds"})
     EXPECT_NE(map.output.find(option), std::string::npos) << option;
 }
 
@@ -128,6 +129,19 @@ TEST_F(Cli, UncertifiedMapExitsThreeButIsWrittenWithItsBadTriangles) {
   EXPECT_EQ(report.find("\"folded_triangles\": []"), std::string::npos) << "the folded triangles must be listed";
   const auto repaired = run_cli("map " + example + " -o " + (folder_ / "repaired").string());
   EXPECT_EQ(repaired.exit_code, 0) << repaired.output;
+}
+
+TEST_F(Cli, EqualizingRoundsOptionReachesTheMapAndTheReport) {
+  const auto input = write_obj(folder_ / "ico.obj", make_icosphere(2));
+  const auto none = run_cli("map " + input + " -o " + (folder_ / "none").string() + " --equalizing-rounds 0");
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  const auto report = slurp(folder_ / "none" / "report.json");
+  EXPECT_NE(report.find("\"max_equalizing_rounds\": 0"), std::string::npos);
+  EXPECT_NE(report.find("\"equalizing_rounds\": 0"), std::string::npos);
+  const auto by_default = run_cli("map " + input + " -o " + (folder_ / "default").string());
+  ASSERT_EQ(by_default.exit_code, 0) << by_default.output;
+  EXPECT_NE(slurp(folder_ / "default" / "report.json").find("\"max_equalizing_rounds\": 12"), std::string::npos);
+  EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "bad").string() + " --equalizing-rounds -1").exit_code, 1);
 }
 
 TEST_F(Cli, UnreadableInputAndBadOptionsExitOne) {
