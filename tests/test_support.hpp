@@ -3,13 +3,25 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <map>
 #include <utility>
+#include <vector>
 
 #include "spheremap/mesh.hpp"
 #include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap::testing_support {
+
+/// The structure files of `pdb`/paper77 and `pdb`/misc (../shared/data/pdb), sorted by path.
+inline std::vector<std::filesystem::path> shared_structure_files(const std::filesystem::path& pdb) {
+  std::vector<std::filesystem::path> files;
+  for (const char* set : {"paper77", "misc"})
+    for (const auto& entry : std::filesystem::directory_iterator(pdb / set)) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 /// Every directed edge once and its reverse once (closed, consistently oriented), and every vertex's
 /// triangles one fan (build_vertex_rings throws otherwise).

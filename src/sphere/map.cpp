@@ -452,6 +452,31 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   double max_step = kReweightingMaxStep;
   int rejections = 0;
   detail::EdgeWeights weights = base;
+  // The map with edge weights base_ij · g_i · g_j, g = exp(proposal), from the reused factorization
+  // (analysed again only when the best round's meridian changed).
+  auto solve_with_gains = [&](int round) {
+    for (std::int32_t v = 0; v < count; ++v) {
+      const auto ring = work.rings.ring(v);
+      const double gain_v = std::exp(proposal[v]);
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
+        const double gain_w = std::exp(proposal[ring[k]]);
+        // g_v · g_w is the same product seen from either end: the weights stay exactly symmetric.
+        weights.values[slot] = base.values[slot] * (base.symmetric ? gain_v * gain_w : gain_w);
+      }
+    }
+    if (reuse) {
+      const auto& meridian = outcome.best.planar.meridian;
+      const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
+      if (!factor || factor->last() != interior)
+        factor = std::make_unique<detail::ReusableCholesky>(work.rings, work.positions, always_fixed, interior);
+    }
+    Candidate candidate;
+    candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar, round);
+    candidate.sphere = to_sphere(candidate.planar, north, south, mercator_c, n);
+    candidate.certificate = certify_sphere_map(mesh, candidate.sphere, options.collapse_floor);
+    return candidate;
+  };
   for (int round = 1; round <= options.max_reweighting_rounds; ++round) {
     // Only vertices below the target move (one-sided: the rest of the map stays the paper's, and no
     // noise from ratios around 1 accumulates in the gains); the 1-ring averages keep neighbouring gains
@@ -476,26 +501,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     if (largest_step == 0) break;  // every vertex is above the target: what is left is for untangling
     // Only ratios of gains matter: the largest is 1, and none below e^-300 keeps every weight positive.
     for (auto& g : proposal) g = std::max(g - top, -300.0);
-    for (std::int32_t v = 0; v < count; ++v) {
-      const auto ring = work.rings.ring(v);
-      const double gain_v = std::exp(proposal[v]);
-      for (std::size_t k = 0; k < ring.size(); ++k) {
-        const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
-        const double gain_w = std::exp(proposal[ring[k]]);
-        // g_v · g_w is the same product seen from either end: the weights stay exactly symmetric.
-        weights.values[slot] = base.values[slot] * (base.symmetric ? gain_v * gain_w : gain_w);
-      }
-    }
-    if (reuse) {
-      const auto& meridian = outcome.best.planar.meridian;
-      const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
-      if (!factor || factor->last() != interior)
-        factor = std::make_unique<detail::ReusableCholesky>(work.rings, work.positions, always_fixed, interior);
-    }
-    Candidate candidate;
-    candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar, round);
-    candidate.sphere = to_sphere(candidate.planar, north, south, mercator_c, n);
-    candidate.certificate = certify_sphere_map(mesh, candidate.sphere, options.collapse_floor);
+    Candidate candidate = solve_with_gains(round);
     outcome.rounds = round;
     // Kept only if no worse in both the number of bad triangles and the smallest area ratio, and better
     // in one: a round that trades fewer bad triangles for a deeper collapse elsewhere is an overshoot.
@@ -538,26 +544,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
       mean_log += proposal[v] / count;
     }
     for (auto& g : proposal) g = std::clamp(g - mean_log, -300.0, 300.0);
-    for (std::int32_t v = 0; v < count; ++v) {
-      const auto ring = work.rings.ring(v);
-      const double gain_v = std::exp(proposal[v]);
-      for (std::size_t k = 0; k < ring.size(); ++k) {
-        const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
-        const double gain_w = std::exp(proposal[ring[k]]);
-        weights.values[slot] = base.values[slot] * (base.symmetric ? gain_v * gain_w : gain_w);
-      }
-    }
-    if (reuse) {
-      const auto& meridian = outcome.best.planar.meridian;
-      const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
-      if (!factor || factor->last() != interior)
-        factor = std::make_unique<detail::ReusableCholesky>(work.rings, work.positions, always_fixed, interior);
-    }
-    Candidate candidate;
-    candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar,
-                                    outcome.rounds + 1);
-    candidate.sphere = to_sphere(candidate.planar, north, south, mercator_c, n);
-    candidate.certificate = certify_sphere_map(mesh, candidate.sphere, options.collapse_floor);
+    Candidate candidate = solve_with_gains(outcome.rounds + 1);
     // An equalizing round can fold a few chords on the sphere while the planar map stays one-to-one
     // (measured: 15-650 on the limb meshes): untangling those is cheap, so such a round is judged by
     // its untangled map.

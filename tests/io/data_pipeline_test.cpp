@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "spheremap/pipeline.hpp"
 
 namespace spheremap {
@@ -18,12 +19,9 @@ namespace fs = std::filesystem;
 TEST(DataPipeline, EveryStructureMapsCertifiedAtOneAngstrom) {
   const fs::path pdb = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb";
   if (!fs::exists(pdb)) GTEST_SKIP() << "shared data not found: " << pdb << " (skipped on purpose)";
-  std::vector<fs::path> files;
-  for (const char* set : {"paper77", "misc"})
-    for (const auto& entry : fs::directory_iterator(pdb / set)) files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = testing_support::shared_structure_files(pdb);
   ASSERT_EQ(files.size(), 88u);
-  // 1 Å keeps the set (GroEL, 480k mapped vertices, included) within CI time: about 150 s of CPU here.
+  // 1 Å keeps the set (GroEL, 480k mapped vertices, included) within CI time: 4-5 minutes here.
   // The 0.5 and 0.25 Å runs are in BENCHMARKS.md (spheremap batch over the same folders).
   MapJobOptions options;
   options.surface.grid = 1.0;

@@ -20,10 +20,7 @@ namespace fs = std::filesystem;
 TEST(DataSurface, EveryStructureGivesAClosedGenusZeroOuterSurface) {
   const fs::path pdb = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb";
   if (!fs::exists(pdb)) GTEST_SKIP() << "shared data not found: " << pdb << " (skipped on purpose)";
-  std::vector<fs::path> files;
-  for (const char* set : {"paper77", "misc"})
-    for (const auto& entry : fs::directory_iterator(pdb / set)) files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = testing_support::shared_structure_files(pdb);
   ASSERT_EQ(files.size(), 88u);
   // 1 Å keeps the whole set within CI time (GroEL included); the 0.5 and 0.25 Å figures are in
   // BENCHMARKS.md (bench/repair_distribution).
