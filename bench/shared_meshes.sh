@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Maps every mesh of ../shared/data/meshes with `spheremap map` (default options unless given) and prints
 # a Markdown table: size, plain algorithm's folds/collapses, repair, final certificate, distortion, time.
-#   bench/shared_meshes.sh [extra spheremap map options...]
+#   bench/shared_meshes.sh [extra spheremap map options...]   (SPHEREMAP=path/to/binary to time another build)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 data=../shared/data/meshes
@@ -13,7 +13,7 @@ for f in "$data"/*.obj "$data"/*.off "$data"/*.ply; do
   name=$(basename "$f")
   rm -rf "$out/r"
   start=$(date +%s.%N)
-  ./build/spheremap map "$f" -o "$out/r" -q "$@" >/dev/null 2>"$out/err"
+  "${SPHEREMAP:-./build/spheremap}" map "$f" -o "$out/r" -q "$@" >/dev/null 2>"$out/err"
   code=$?
   seconds=$(echo "$(date +%s.%N) - $start" | bc)
   if [ -f "$out/r/report.json" ]; then

@@ -2,10 +2,12 @@
 // Each subcommand lives in its own file (commands.hpp); this file registers and dispatches them.
 #include <iostream>
 
+#include "blas_kernels.hpp"
 #include "commands.hpp"
 #include "spheremap/error.hpp"
 
 int main(int argc, char** argv) {
+  spheremap::cli::use_blas_kernels_for_this_cpu(argv);
   CLI::App app{
       "spheremap: maps closed genus-0 surfaces onto the unit sphere, one-to-one and certified\n"
       "(Rahi & Sharp, 'Mapping Complicated Surfaces onto a Sphere', with the cases the paper leaves out).\n"

@@ -43,5 +43,21 @@ TEST(DataPipeline, EveryStructureMapsCertifiedAtOneAngstrom) {
   std::printf("\n");
 }
 
+// GroEL at the default 0.5 Å grid: 585k mapped vertices whose plain map collapses 336k triangles. With a
+// re-weighting round required never to lower the smallest area ratio, the rounds stalled at 564 bad
+// triangles and untangling left 811 collapsed (not certified); this is the regression test of the fix.
+TEST(DataPipeline, GroELMapsCertifiedAtTheDefaultGrid) {
+  const fs::path file = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb" / "misc" / "1aon.pdb";
+  if (!fs::exists(file)) GTEST_SKIP() << "shared data not found: " << file << " (skipped on purpose)";
+  const MapJobResult result = run_map_job(file, MapJobOptions{});
+  EXPECT_GT(result.topology.genus_before, 0);
+  EXPECT_GT(result.map.plain_certificate.collapsed, 100000);
+  const auto& c = result.map.certificate;
+  EXPECT_TRUE(c.certified()) << c.folded << " folded, " << c.collapsed << " collapsed, smallest ratio " << c.min_area_ratio;
+  std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds, %lld untangling moves, smallest ratio %.3g\n",
+              result.map.sphere.size(), result.map.reweighting_rounds, static_cast<long long>(result.map.untangling_moves),
+              c.min_area_ratio);
+}
+
 }  // namespace
 }  // namespace spheremap
