@@ -40,7 +40,7 @@ Command add_surface_command(CLI::App& app) {
             }
             SimplifyReport simplification;
             if (s.options.simplify.target_edge_length > 0)
-              result.mesh = simplify_surface(result.mesh, s.options.simplify, &simplification);
+              result.mesh = simplify_surface(std::move(result.mesh), s.options.simplify, &simplification);
             const Mesh& surface = result.mesh;
             write_ply(s.output, surface, PlyWriteOptions{s.options.ascii});
             if (!s.quiet) {

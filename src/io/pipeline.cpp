@@ -209,9 +209,12 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     Grid3<float> field = solvent_excluded_field_float(atoms, budgeted);
     lap("field");
     mesh = contour_isosurface(field, 0.0, surface.threads, surface.contour_minimum_fraction);
-    const auto before = mesh_components(mesh);
-    report.genus_before = before.empty() ? 0 : before.front().genus;
-    report.area_before = before.empty() ? 0 : before.front().area;
+    {
+      // Scoped: its triangle lists (one index per triangle) would otherwise stay through the repair.
+      const auto before = mesh_components(mesh);
+      report.genus_before = before.empty() ? 0 : before.front().genus;
+      report.area_before = before.empty() ? 0 : before.front().area;
+    }
     lap("contour");
     if (!keep_topology && report.genus_before != 0) {
       mesh = Mesh{};  // the repair needs the memory; its last genus check contours the repaired field
@@ -274,9 +277,10 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
 }
 
 // Prepares component `chosen` of a molecular surface for mapping (flagged as mapped in the report).
-// Takes the surface's mesh when it is its only component. Returns the component's name for messages.
+// With `last_use` the surface's mesh is taken (the component made from it in place; at 0.25 Å a copy of
+// 23M vertices would stand beside the simplification). Returns the component's name for messages.
 std::string prepare_surface_component(MolecularSurface& surface, std::size_t chosen, const std::string& name,
-                                      const MapJobOptions& options, MapJobResult& result) {
+                                      const MapJobOptions& options, MapJobResult& result, bool last_use) {
   if (surface.components[chosen].genus != 0) {
     throw MeshRefused(fmt::format(
         "{}: the {} surface has genus {} ({} handle(s) or tunnel(s)), but a one-to-one map onto a sphere needs genus 0{}",
@@ -289,11 +293,22 @@ std::string prepare_surface_component(MolecularSurface& surface, std::size_t cho
   MapJobOptions named = options;
   named.prepare.source_name = chosen == 0 ? name : fmt::format("{}, component {}", name, chosen);
   named.prepare.component = kComponentRefuse;
-  Mesh component = surface.components.size() == 1 ? std::move(surface.mesh)  // nothing else needs it
-                                                  : extract_component(surface.mesh, surface.components[chosen]);
+  // add_atom_provenance below writes these again from `atomid`: meanwhile they would be extracted and
+  // carried through the simplification for nothing.
+  for (const char* derived : {"vertex_atom_serial", "vertex_residue_number", "vertex_model"})
+    surface.mesh.integer_attributes.erase(derived);
+  Mesh component;
+  if (surface.components.size() == 1) {
+    component = std::move(surface.mesh);  // nothing else needs it
+  } else if (last_use) {
+    component = extract_component(std::move(surface.mesh), surface.components[chosen]);
+    surface.components = {};
+  } else {
+    component = extract_component(surface.mesh, surface.components[chosen]);
+  }
   if (options.simplify.target_edge_length > 0) {
     const auto simplify_start = std::chrono::steady_clock::now();
-    component = simplify_surface(component, options.simplify, &result.simplification);
+    component = simplify_surface(std::move(component), options.simplify, &result.simplification);
     result.simplified = true;
     result.simplify_seconds = seconds_since(simplify_start);
   }
@@ -316,7 +331,7 @@ void simplify_prepared_mesh(MapJobResult& result, const MapJobOptions& options, 
   }
   const auto start = std::chrono::steady_clock::now();
   auto& prepared = result.prepared;
-  prepared.mesh = simplify_surface(prepared.mesh, simplify, &result.simplification);
+  prepared.mesh = simplify_surface(std::move(prepared.mesh), simplify, &result.simplification);
   const auto& kept = result.simplification.kept_vertex;
   std::vector<std::int32_t> new_index(prepared.report.original_vertex.size(), -1), original(kept.size());
   for (std::size_t i = 0; i < kept.size(); ++i) {
@@ -346,7 +361,7 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
                                      "by decreasing area",
                                      name, chosen, surface.components.size(), surface.components.size() - 1));
     }
-    return prepare_surface_component(surface, chosen, name, options, result);
+    return prepare_surface_component(surface, chosen, name, options, result, true);
   }
   const auto start = std::chrono::steady_clock::now();
   const PolygonSoup soup = read_polygon_soup(input);
@@ -373,7 +388,7 @@ std::vector<MapJobResult> run_map_job_components(const std::filesystem::path& in
   for (std::size_t c = 0; c < surface.components.size(); ++c) {
     if (surface.components[c].genus != 0) continue;  // reported in the components list, never mapped
     MapJobResult result = base;
-    const std::string component_name = prepare_surface_component(surface, c, name, options, result);
+    const std::string component_name = prepare_surface_component(surface, c, name, options, result, false);
     map_and_measure(result, options, component_name);
     results.push_back(std::move(result));
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 #include "spheremap/geometry/vec.hpp"
 
@@ -82,6 +83,35 @@ Mesh extract_component(const Mesh& mesh, const MeshComponent& component) {
     for (const auto v : kept) o.codes.push_back(text.codes[v]);
   }
   return out;
+}
+
+Mesh extract_component(Mesh&& mesh, const MeshComponent& component) {
+  std::vector<std::int32_t> new_index(mesh.positions.size(), -1);
+  for (const auto t : component.triangles)
+    for (const auto v : mesh.triangles[t]) new_index[v] = 0;
+  std::int32_t kept = 0;
+  for (auto& index : new_index)
+    if (index == 0) index = kept++;
+  // Kept vertices and triangles keep their order, so an entry only ever moves to a lower index: compacting
+  // front to back never overwrites one still to be read. The copy that shrink_to_fit makes is of the kept
+  // part only; without it the dropped tail would stay resident through the simplification.
+  auto compact = [&](auto& values) {
+    for (std::size_t v = 0; v < new_index.size(); ++v)
+      if (new_index[v] >= 0) values[static_cast<std::size_t>(new_index[v])] = std::move(values[v]);
+    values.resize(static_cast<std::size_t>(kept));
+    values.shrink_to_fit();
+  };
+  compact(mesh.positions);
+  for (auto& [name, values] : mesh.real_attributes) compact(values);
+  for (auto& [name, values] : mesh.integer_attributes) compact(values);
+  for (auto& [name, text] : mesh.text_attributes) compact(text.codes);
+  for (std::size_t i = 0; i < component.triangles.size(); ++i) {
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(component.triangles[i])];
+    mesh.triangles[i] = {new_index[tri[0]], new_index[tri[1]], new_index[tri[2]]};
+  }
+  mesh.triangles.resize(component.triangles.size());
+  mesh.triangles.shrink_to_fit();
+  return std::move(mesh);
 }
 
 }  // namespace spheremap

@@ -9,6 +9,7 @@
 #include <exception>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "spheremap/geometry/vec.hpp"
 
@@ -81,8 +82,9 @@ double worst_corner_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
 // tri[t][k+1]; opp[h] is the half-edge running the other way in the neighbouring triangle.
 class Surface {
  public:
+  // An edge to try to collapse; a < b unless it comes from a sliver. 8 bytes: at 0.25 Å a first round has
+  // 70M of them.
   struct Candidate {
-    float squared_length;
     std::int32_t a, b;
   };
   // Scratch space of one thread, and what it did.
@@ -92,11 +94,12 @@ class Surface {
     std::vector<double> worst_a, worst_b;
     std::vector<Candidate> deferred;
     std::vector<std::int32_t> removed;  // vertices collapsed, not yet taken off their component's size
-    std::vector<std::int64_t> removed_in;  // per component (by root): collapses in this zone this round
+    std::vector<std::int64_t> removed_in;  // per component: collapses in this zone this round
   };
 
-  Surface(const Mesh& mesh, const SimplifyOptions& options, int threads)
-      : p_(mesh.positions), tri_(mesh.triangles), options_(options), threads_(threads) {
+  // Takes the mesh's triangles (they become the working copy); its positions must outlive the Surface.
+  Surface(Mesh& mesh, const SimplifyOptions& options, int threads)
+      : p_(mesh.positions), tri_(std::move(mesh.triangles)), options_(options), threads_(threads) {
     const auto vertices = static_cast<std::int32_t>(p_.size());
     const auto half_edges = static_cast<std::int64_t>(tri_.size()) * 3;
     if (half_edges >= std::numeric_limits<std::int32_t>::max())
@@ -104,7 +107,67 @@ class Surface {
     for (const auto& t : tri_)
       for (const auto v : t)
         if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a triangle index is out of range");
-    // Pair half-edges: grouped by their smaller vertex (counting sort), then matched within the group.
+    pair_half_edges();
+    // One leaving half-edge per vertex; each vertex's triangles must form one fan.
+    out_.assign(static_cast<std::size_t>(vertices), kDead);
+    {
+      std::vector<std::int32_t> corners(static_cast<std::size_t>(vertices), 0);
+      for (std::int32_t h = 0; h < half_edges; ++h) out_[from(h)] = h, ++corners[from(h)];
+      for (std::int32_t v = 0; v < vertices; ++v) {
+        if (out_[v] == kDead) throw std::invalid_argument("simplify_surface: a vertex belongs to no triangle");
+        if (degree(v) != corners[v])
+          throw std::invalid_argument("simplify_surface: a vertex's triangles form several fans (a pinched vertex)");
+      }
+    }
+    // Components (by shared vertices), numbered by their smallest vertex, and their vertex counts: none may
+    // shrink below 4 (a tetrahedron). Per-component figures are indexed by that number, not by vertex: a
+    // contour has millions of vertices and a handful of components.
+    {
+      std::vector<std::int32_t> parent(static_cast<std::size_t>(vertices));
+      std::iota(parent.begin(), parent.end(), 0);
+      auto root = [&](std::int32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+      };
+      for (const auto& t : tri_)
+        for (int k = 1; k < 3; ++k) {
+          const auto a = root(t[0]), b = root(t[k]);
+          if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+      // A root is the smallest vertex of its component, so it is numbered before any other vertex of it.
+      component_.resize(static_cast<std::size_t>(vertices));
+      for (std::int32_t v = 0; v < vertices; ++v) {
+        const std::int32_t r = root(v);
+        if (r == v) {
+          component_[v] = static_cast<std::int32_t>(component_size_.size());
+          component_size_.push_back(0);
+        } else {
+          component_[v] = component_[r];
+        }
+        ++component_size_[component_[v]];
+      }
+    }
+    merged_into_.assign(static_cast<std::size_t>(vertices), kDead);
+    quality_.resize(tri_.size());
+    for (std::size_t t = 0; t < tri_.size(); ++t) quality_[t] = triangle_cosine(static_cast<std::int32_t>(t));
+    kept_.assign(static_cast<std::size_t>(vertices), false);
+    for (const auto v : options.kept_vertices) {
+      if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a kept vertex does not exist");
+      kept_[v] = true;
+    }
+    cos_min_angle_ = std::cos(options.min_angle_degrees * std::numbers::pi / 180);
+    const double cos_normal_change = std::cos(options.max_normal_change_degrees * std::numbers::pi / 180);
+    cos_normal_change_squared_ = cos_normal_change * cos_normal_change;
+    const double high = options.target_edge_length * 4 / 3;
+    longest_squared_ = high * high;
+  }
+
+  // opp_: half-edges grouped by their smaller vertex (counting sort), then matched within the group. Its
+  // own function so that its scratch (an entry per half-edge, two per vertex) is gone before the rest of
+  // the surface is built.
+  void pair_half_edges() {
+    const auto vertices = static_cast<std::int32_t>(p_.size());
+    const auto half_edges = static_cast<std::int32_t>(tri_.size() * 3);
     std::vector<std::int32_t> start(static_cast<std::size_t>(vertices) + 1, 0);
     for (std::int32_t h = 0; h < half_edges; ++h) ++start[static_cast<std::size_t>(std::min(from(h), to(h))) + 1];
     std::partial_sum(start.begin(), start.end(), start.begin());
@@ -133,42 +196,6 @@ class Surface {
         opp_[h] = match, opp_[match] = h;
       }
     }
-    // One leaving half-edge per vertex; each vertex's triangles must form one fan.
-    out_.assign(static_cast<std::size_t>(vertices), kDead);
-    std::vector<std::int32_t> corners(static_cast<std::size_t>(vertices), 0);
-    for (std::int32_t h = 0; h < half_edges; ++h) out_[from(h)] = h, ++corners[from(h)];
-    for (std::int32_t v = 0; v < vertices; ++v) {
-      if (out_[v] == kDead) throw std::invalid_argument("simplify_surface: a vertex belongs to no triangle");
-      if (degree(v) != corners[v])
-        throw std::invalid_argument("simplify_surface: a vertex's triangles form several fans (a pinched vertex)");
-    }
-    // Components (by shared vertices) and their vertex counts: none may shrink below 4 (a tetrahedron).
-    component_.resize(static_cast<std::size_t>(vertices));
-    std::iota(component_.begin(), component_.end(), 0);
-    auto root = [&](std::int32_t v) {
-      while (component_[v] != v) v = component_[v] = component_[component_[v]];
-      return v;
-    };
-    for (const auto& t : tri_)
-      for (int k = 1; k < 3; ++k) {
-        const auto a = root(t[0]), b = root(t[k]);
-        if (a != b) component_[std::max(a, b)] = std::min(a, b);
-      }
-    component_size_.assign(static_cast<std::size_t>(vertices), 0);
-    for (std::int32_t v = 0; v < vertices; ++v) component_[v] = root(v), ++component_size_[component_[v]];
-    merged_into_.assign(static_cast<std::size_t>(vertices), kDead);
-    quality_.resize(tri_.size());
-    for (std::size_t t = 0; t < tri_.size(); ++t) quality_[t] = triangle_cosine(static_cast<std::int32_t>(t));
-    kept_.assign(static_cast<std::size_t>(vertices), false);
-    for (const auto v : options.kept_vertices) {
-      if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a kept vertex does not exist");
-      kept_[v] = true;
-    }
-    cos_min_angle_ = std::cos(options.min_angle_degrees * std::numbers::pi / 180);
-    const double cos_normal_change = std::cos(options.max_normal_change_degrees * std::numbers::pi / 180);
-    cos_normal_change_squared_ = cos_normal_change * cos_normal_change;
-    const double high = options.target_edge_length * 4 / 3;
-    longest_squared_ = high * high;
   }
 
   [[nodiscard]] std::int32_t from(std::int32_t h) const { return tri_[h / 3][h % 3]; }
@@ -388,51 +415,52 @@ class Surface {
     constexpr int kClasses = 16;
     constexpr std::int32_t kBlockTriangles = 1 << 14;
     const double low = options_.target_edge_length * 4 / 5, low_squared = low * low;
-    candidates_.clear();
-    std::vector<std::size_t> block_start;
-    for (std::int32_t t = 0; t < static_cast<std::int32_t>(tri_.size()); ++t) {
-      if (t % kBlockTriangles == 0) block_start.push_back(candidates_.size());
-      if (!alive_triangle(t)) continue;
-      // Every edge of a triangle with a corner below min_angle_degrees is a candidate too, whatever its
-      // length: a sliver whose short edges are long already (a vertex almost on the opposite edge, often
-      // of degree 3, which no flip can remove) goes only by a collapse.
-      const bool sliver = quality_[t] > cos_min_angle_;
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
-        const double squared_length = squared_distance(p_[a], p_[b]);
-        if ((a < b && squared_length < low_squared) || (sliver && squared_length >= low_squared))
-          candidates_.push_back({static_cast<float>(squared_length), std::min(a, b), std::max(a, b)});
-      }
-    }
-    block_start.push_back(candidates_.size());
-    // Shortest first within blocks of consecutive triangles (2^14: a compact piece of the mesh, whose
-    // data stay in cache), by classes of lengths within a factor 2^(1/4) of each other, and in triangle
-    // order within a class. A global sort by length would visit the mesh at random and spend its time
-    // in cache misses; a global sweep per class would stream the whole mesh 16 times.
-    auto length_class = [&](float squared_length) {
-      const double ratio = std::min(1.0, static_cast<double>(squared_length) / low_squared);
-      return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
-    };
-    for (std::size_t b = 0; b + 1 < block_start.size(); ++b) {
-      const auto first = candidates_.begin() + static_cast<std::ptrdiff_t>(block_start[b]);
-      const auto last = candidates_.begin() + static_cast<std::ptrdiff_t>(block_start[b + 1]);
-      std::array<std::size_t, kClasses + 1> start{};
-      for (auto c = first; c != last; ++c) ++start[static_cast<std::size_t>(length_class(c->squared_length)) + 1];
-      for (int k = 0; k < kClasses; ++k) start[k + 1] += start[k];
-      block_buffer_.resize(static_cast<std::size_t>(last - first));
-      for (auto c = first; c != last; ++c) block_buffer_[start[static_cast<std::size_t>(length_class(c->squared_length))]++] = *c;
-      std::copy(block_buffer_.begin(), block_buffer_.end(), first);
-    }
     // Two zones, split at the median x of the vertices, are worked on at once (each by its own thread
     // when there are two); whatever would touch both waits for a serial pass afterwards. Each zone's
     // work reads and writes only its own vertices and the triangles all of whose corners are in it, so
-    // the result is the same in whatever order, or on however many threads, the zones run.
+    // the result is the same in whatever order, or on however many threads, the zones run. (Zones first:
+    // the median's scratch is gone before the candidates take their memory.)
     assign_zones();
+    // Shortest first within blocks of consecutive triangles (2^14: a compact piece of the mesh, whose
+    // data stay in cache), by classes of lengths within a factor 2^(1/4) of each other, and in triangle
+    // order within a class. A global sort by length would visit the mesh at random and spend its time
+    // in cache misses; a global sweep per class would stream the whole mesh 16 times. A block's
+    // candidates are sorted as soon as it is read, so only their vertices are kept, not their lengths.
+    // The length goes through float as when candidates kept it, so that the classes stay the same.
+    auto length_class = [&](double squared_length) {
+      const double ratio = std::min(1.0, static_cast<double>(static_cast<float>(squared_length)) / low_squared);
+      return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
+    };
+    std::vector<Candidate> candidates;
+    std::vector<std::pair<std::uint8_t, Candidate>> block;  // length class, edge
+    for (std::int32_t first = 0; first < static_cast<std::int32_t>(tri_.size()); first += kBlockTriangles) {
+      block.clear();
+      const std::int32_t last = std::min(static_cast<std::int32_t>(tri_.size()), first + kBlockTriangles);
+      for (std::int32_t t = first; t < last; ++t) {
+        if (!alive_triangle(t)) continue;
+        // Every edge of a triangle with a corner below min_angle_degrees is a candidate too, whatever its
+        // length: a sliver whose short edges are long already (a vertex almost on the opposite edge, often
+        // of degree 3, which no flip can remove) goes only by a collapse.
+        const bool sliver = quality_[t] > cos_min_angle_;
+        for (int k = 0; k < 3; ++k) {
+          const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
+          const double squared_length = squared_distance(p_[a], p_[b]);
+          if ((a < b && squared_length < low_squared) || (sliver && squared_length >= low_squared))
+            block.push_back({static_cast<std::uint8_t>(length_class(squared_length)), {std::min(a, b), std::max(a, b)}});
+        }
+      }
+      std::array<std::size_t, kClasses + 1> start{};
+      for (const auto& [length, edge] : block) ++start[static_cast<std::size_t>(length) + 1];
+      for (int k = 0; k < kClasses; ++k) start[k + 1] += start[k];
+      const std::size_t offset = candidates.size();
+      candidates.resize(offset + block.size());
+      for (const auto& [length, edge] : block) candidates[offset + start[length]++] = edge;
+    }
     std::array<Workspace, 2> zone_work;
     for (auto& w : zone_work) w.removed_in.assign(component_size_.size(), 0);
     auto run_zone = [&](int zone) {
       auto& w = zone_work[static_cast<std::size_t>(zone)];
-      for (const auto& c : candidates_) {
+      for (const auto& c : candidates) {
         if (zone_[c.a] != zone) continue;
         if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
         if (zone_[c.b] != zone) {
@@ -495,7 +523,7 @@ class Surface {
     zone_.resize(out_.size());
     for (std::size_t v = 0; v < out_.size(); ++v) zone_[v] = p_[v][0] < split ? 0 : 1;
     zone_budget_.resize(component_size_.size());
-    for (std::size_t r = 0; r < component_size_.size(); ++r) zone_budget_[r] = std::max<std::int64_t>(0, (component_size_[r] - 64) / 2);
+    for (std::size_t c = 0; c < component_size_.size(); ++c) zone_budget_[c] = std::max<std::int64_t>(0, (component_size_[c] - 64) / 2);
   }
 
   // One pass of angle-improving flips over every edge, in triangle order. Returns the number of flips.
@@ -570,7 +598,6 @@ class Surface {
   std::vector<std::int64_t> component_size_;
   std::vector<bool> kept_;
   std::vector<double> quality_;  // worst_corner_cosine of each triangle, kept up to date
-  std::vector<Candidate> candidates_, block_buffer_;
   std::vector<std::int8_t> zone_;
   std::vector<std::int64_t> zone_budget_;
   int threads_ = 1;
@@ -601,7 +628,7 @@ ShapeFigures shape_figures(const std::vector<Vec3>& positions, const std::vector
 
 }  // namespace
 
-Mesh simplify_surface(const Mesh& mesh, const SimplifyOptions& options, SimplifyReport* report) {
+Mesh simplify_surface(Mesh mesh, const SimplifyOptions& options, SimplifyReport* report) {
   for (const double value : {options.target_edge_length, options.max_error, options.min_angle_degrees,
                              options.max_normal_change_degrees})
     if (!(value >= 0) || !std::isfinite(value))
@@ -636,7 +663,7 @@ Mesh simplify_surface(const Mesh& mesh, const SimplifyOptions& options, Simplify
   }
   r.max_vertex_distance = options.measure_distance ? surface.removed_vertex_distance() : -1;
   // Survivors in input order, triangles in input order.
-  const auto& triangles = surface.triangles();
+  const auto& triangles = surface.triangles();  // mesh.triangles were taken by the surface
   std::vector<std::int32_t> new_index(mesh.vertex_count(), kDead);
   for (const auto& t : triangles)
     if (t[0] != kDead)

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -118,6 +119,44 @@ TEST(Simplify, KeepsTheGenusAndTheComponents) {
   ASSERT_EQ(components.size(), 2u);
   EXPECT_EQ(components[0].genus + components[1].genus, 1);
   EXPECT_LT(out.vertex_count(), two.vertex_count() / 3);
+}
+
+// The pipeline takes the outer component of a contour in place (extract_component(Mesh&&)): it must be
+// exactly what the copying extract_component gives, attributes included, for every component.
+TEST(Simplify, ExtractComponentInPlaceMatchesTheCopy) {
+  Mesh three = make_torus(5, 1.5, 40, 20);
+  for (const double x : {20.0, -20.0}) {
+    const Mesh ball = scaled(make_icosphere(2), 2.0);
+    const auto offset = static_cast<std::int32_t>(three.vertex_count());
+    for (const auto& p : ball.positions) three.positions.push_back(p + Vec3{x, 0, 0});
+    for (const auto& t : ball.triangles) three.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  // Interleave the components' triangles so that compacting moves entries across the whole arrays.
+  std::rotate(three.triangles.begin(), three.triangles.begin() + 7, three.triangles.end());
+  const auto n = three.vertex_count();
+  auto& ids = three.integer_attributes["atomid"];
+  auto& heights = three.real_attributes["height"];
+  auto& names = three.text_attributes["name"];
+  names.dictionary = {"a", "b", "c"};
+  for (std::size_t v = 0; v < n; ++v) {
+    ids.push_back(static_cast<std::int32_t>(3 * v + 1));
+    heights.push_back(three.positions[v][2]);
+    names.codes.push_back(static_cast<std::int32_t>(v % 3));
+  }
+  const auto components = mesh_components(three);
+  ASSERT_EQ(components.size(), 3u);
+  for (const auto& component : components) {
+    const Mesh copied = extract_component(three, component);
+    Mesh taken = extract_component(Mesh(three), component);
+    EXPECT_EQ(taken.positions, copied.positions);
+    EXPECT_EQ(taken.triangles, copied.triangles);
+    EXPECT_EQ(taken.integer_attributes, copied.integer_attributes);
+    EXPECT_EQ(taken.real_attributes, copied.real_attributes);
+    ASSERT_EQ(taken.text_attributes.size(), 1u);
+    EXPECT_EQ(taken.text_attributes["name"].codes, copied.text_attributes.at("name").codes);
+    EXPECT_EQ(taken.text_attributes["name"].dictionary, copied.text_attributes.at("name").dictionary);
+    EXPECT_EQ(taken.positions.capacity(), taken.positions.size());
+  }
 }
 
 TEST(Simplify, NeverShrinksAComponentBelowATetrahedronOrRemovesKeptVertices) {

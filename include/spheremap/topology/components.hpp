@@ -26,5 +26,7 @@ std::vector<MeshComponent> mesh_components(const Mesh& mesh);
 
 /// The sub-mesh of one component: its vertices (in ascending original order) with their attributes.
 Mesh extract_component(const Mesh& mesh, const MeshComponent& component);
+/// The same, made in place from a mesh that is no longer needed (no second copy of a large surface).
+Mesh extract_component(Mesh&& mesh, const MeshComponent& component);
 
 }  // namespace spheremap

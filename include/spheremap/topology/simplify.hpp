@@ -67,6 +67,8 @@ struct SimplifyReport {
 /// exactly two triangles, in opposite directions; each vertex's triangles a single fan) and has no
 /// unreferenced vertex. Throws std::invalid_argument otherwise, if an option is negative or not finite,
 /// max_normal_change_degrees is not below 90, or a kept vertex does not exist.
-Mesh simplify_surface(const Mesh& mesh, const SimplifyOptions& options, SimplifyReport* report = nullptr);
+/// The mesh is taken by value: a caller done with it moves it in, and its triangles become the working
+/// copy instead of being copied (at 0.25 Å, 47M triangles of a GroEL contour).
+Mesh simplify_surface(Mesh mesh, const SimplifyOptions& options, SimplifyReport* report = nullptr);
 
 }  // namespace spheremap
