@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "harmonic.hpp"
+#include "meridian.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -189,87 +190,11 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
                                             options.gauss_seidel_max_sweeps);
   }
 
-  // Boundary meridian: steepest descent in the strict total order (z, index), so that ties cannot stall
-  // or loop and no edge can join two non-consecutive meridian vertices.
-  auto lower = [&](std::int32_t a, std::int32_t b) {
-    return planar.z[a] != planar.z[b] ? planar.z[a] < planar.z[b] : a < b;
-  };
-  auto lowest_neighbour = [&](std::int32_t v) {
-    std::int32_t best = -1;
-    for (auto w : rings.ring(v)) {
-      if (w == north || w == south || on_north_ring[w]) continue;
-      if (best < 0 || lower(w, best)) best = w;
-    }
-    return best;
-  };
-  // A meridian kept from an earlier round is still a chord-free path from ring to ring (a property of
-  // the graph); if z strictly decreases along it, the boundary of the (z, φ) rectangle is again traversed
-  // monotonically and Floater's theorem applies as for a fresh steepest descent.
-  planar.meridian_round = round;
-  if (kept) {
-    const auto& path = kept->meridian;
-    bool descends = path.size() >= 2;
-    for (std::size_t m = 0; descends && m + 1 < path.size(); ++m) descends = lower(path[m + 1], path[m]);
-    if (descends) {
-      planar.meridian = path;
-      planar.meridian_by_descent = kept->meridian_by_descent;
-      planar.meridian_round = kept->meridian_round;
-    }
-  }
-  std::vector<std::int32_t> starts(north_ring.begin(), north_ring.end());
-  // Start where the descent is steepest; the rest are fallbacks should a descent stall numerically.
-  std::sort(starts.begin(), starts.end(), [&](std::int32_t a, std::int32_t b) {
-    const auto la = lowest_neighbour(a), lb = lowest_neighbour(b);
-    if (la < 0 || lb < 0) return la >= 0 && lb < 0;
-    return la != lb ? lower(la, lb) : a < b;
-  });
-  for (auto start : starts) {
-    if (!planar.meridian.empty()) break;
-    std::vector<std::int32_t> path{start};
-    auto current = lowest_neighbour(start);
-    bool stalled = current < 0;
-    while (!stalled) {
-      path.push_back(current);
-      if (on_south_ring[current]) break;
-      const auto next = lowest_neighbour(current);
-      if (next < 0 || !lower(next, current)) stalled = true;
-      else current = next;
-    }
-    if (!stalled) {
-      planar.meridian = std::move(path);
-      break;
-    }
-  }
-  if (planar.meridian.empty()) {
-    // Only with weights that can be negative (cotangent) can z have interior minima where every descent
-    // stalls. A shortest path from ring to ring has no chord either (a chord would shorten it); the
-    // certificate judges the map it leads to.
-    planar.meridian_by_descent = false;
-    std::vector<std::int32_t> previous(n, -1);
-    std::vector<std::int32_t> queue;
-    std::vector<std::int32_t> sources(north_ring.begin(), north_ring.end());
-    std::sort(sources.begin(), sources.end());
-    for (auto v : sources) previous[v] = v, queue.push_back(v);
-    std::int32_t reached = -1;
-    for (std::size_t head = 0; head < queue.size() && reached < 0; ++head) {
-      const auto v = queue[head];
-      for (auto w : rings.ring(v)) {
-        if (w == north || w == south || previous[w] >= 0) continue;
-        previous[w] = v;
-        if (on_south_ring[w]) {
-          reached = w;
-          break;
-        }
-        queue.push_back(w);
-      }
-    }
-    if (reached < 0) throw std::logic_error("no path between the circumpolar rings");
-    for (auto v = reached;; v = previous[v]) {
-      planar.meridian.push_back(v);
-      if (previous[v] == v) break;
-    }
-    std::reverse(planar.meridian.begin(), planar.meridian.end());
-  }
+  // Boundary meridian (meridian.hpp): the best round's if z still strictly decreases along it.
+  auto found = detail::boundary_meridian(rings, planar.z, north, south, kept ? &kept->meridian : nullptr);
+  planar.meridian = std::move(found.path);
+  planar.meridian_by_descent = found.kept ? kept->meridian_by_descent : found.by_descent;
+  planar.meridian_round = found.kept ? kept->meridian_round : round;
 
   // φ: rings uniformly spaced, meridian at 0 (seen from the east) and 2π (from the west).
   detail::HarmonicProblem phi_problem{&rings, &weights, &work.positions, std::vector<char>(n, 0),
