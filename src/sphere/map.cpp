@@ -168,9 +168,6 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
   const auto n = rings.vertex_count();
   const auto north_ring = rings.ring(north);
   const auto south_ring = rings.ring(south);
-  std::vector<char> on_north_ring(n, 0), on_south_ring(n, 0);
-  for (auto v : north_ring) on_north_ring[v] = 1;
-  for (auto v : south_ring) on_south_ring[v] = 1;
 
   PlanarCoordinates planar;
   // z: harmonic between the rings.
