@@ -170,11 +170,7 @@ Command add_batch_command(CLI::App& app) {
                       "Normalized area ratio below which a triangle counts as collapsed (default 1e-6)")
       ->check(CLI::PositiveNumber);
   command->add_flag("--ascii", s.options.ascii, "Write ASCII PLY with full precision (%.17g)");
-  command->add_option("--equalizing-rounds", s.options.map.max_equalizing_rounds,
-                      "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets more "
-                      "evenly, each kept only if the map stays certified and its area distortion drops (default 12; 0: "
-                      "faster, the first certified map)")
-      ->check(CLI::NonNegativeNumber);
+  add_equalizing_rounds_option(command, s.options.map);
   command->add_flag("--no-repair", s.no_repair, "The paper's algorithm only: no re-weighting, no untangling");
   command->add_flag("--force", s.force, "Redo every input, even those already complete (also when options changed)");
   command->add_flag("--retry-errors", s.retry_errors, "Redo the inputs that failed before (error.json)");

@@ -45,6 +45,9 @@ inline constexpr double kPaperGrid = 2.5;
 // The paper contours the binary inside/outside grid at 1/2: every vertex at the midpoint of its edge.
 inline constexpr double kPaperContourFraction = 0.5;
 
+/// --equalizing-rounds (map and batch): MapOptions::max_equalizing_rounds, 0 or more.
+void add_equalizing_rounds_option(CLI::App* command, MapOptions& options);
+
 /// Harmonic weights by their CLI name (uniform, cotan, mean-value).
 Weights parse_weights(const std::string& name);
 

@@ -71,6 +71,14 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
   options.simplify.max_error = mesh_tolerance > 0 ? mesh_tolerance : options.simplify.target_edge_length / 10;
 }
 
+void add_equalizing_rounds_option(CLI::App* command, MapOptions& options) {
+  command->add_option("--equalizing-rounds", options.max_equalizing_rounds,
+                      "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets more "
+                      "evenly, each kept only if the map stays certified and its area distortion drops (default 12; 0: "
+                      "faster, the first certified map)")
+      ->check(CLI::NonNegativeNumber);
+}
+
 Weights parse_weights(const std::string& name) {
   if (name == "uniform") return Weights::kUniform;
   if (name == "cotan") return Weights::kCotangent;

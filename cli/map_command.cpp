@@ -72,11 +72,7 @@ Command add_map_command(CLI::App& app) {
                       "Normalized area ratio below which a triangle counts as collapsed (default 1e-6)")
       ->check(CLI::PositiveNumber);
   command->add_flag("--ascii", s.options.ascii, "Write ASCII PLY with full precision (%.17g), e.g. for PyMOL");
-  command->add_option("--equalizing-rounds", s.options.map.max_equalizing_rounds,
-                      "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets more "
-                      "evenly, each kept only if the map stays certified and its area distortion drops (default 12; 0: "
-                      "faster, the first certified map)")
-      ->check(CLI::NonNegativeNumber);
+  add_equalizing_rounds_option(command, s.options.map);
   command->add_flag("--no-repair", s.no_repair, "The paper's algorithm only: no re-weighting, no untangling (the certificate still runs)");
   command->add_flag("-q,--quiet", s.quiet, "Print nothing on success");
   s.structure.add(command, s.options);
