@@ -45,6 +45,12 @@ inline constexpr double kPaperGrid = 2.5;
 // The paper contours the binary inside/outside grid at 1/2: every vertex at the midpoint of its edge.
 inline constexpr double kPaperContourFraction = 0.5;
 
+/// A quick look (--preset fast): an 8k-atom structure to a certified map in under a second on two cores
+/// (BENCHMARKS.md). A 1 Å grid (areas 1-1.5% below MSMS's; see BENCHMARKS.md), about 2 Å edges on the
+/// mapped mesh (a 40,000 Å² surface: about 23,000 vertices) and the first certified map (no equalizing).
+inline constexpr double kFastGrid = 1.0;
+inline constexpr double kFastMeshEdge = 2.0;
+
 /// --equalizing-rounds (map and batch): MapOptions::max_equalizing_rounds, 0 or more.
 void add_equalizing_rounds_option(CLI::App* command, MapOptions& options);
 

@@ -38,10 +38,11 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, bool for_ma
   cmd->add_option("--radii", radii_file, "Radius table: 'ELEMENT RADIUS' per line (default: Bondi 1964)");
   cmd->add_option("--preset", preset,
                   fmt::format("'paper': the paper's settings for reproduction (probe {} Å, Bondi radii, grid {} Å, the "
-                              "binary grid contoured at 1/2: vertices at edge midpoints); --probe and --grid given "
-                              "explicitly still win",
-                              kPaperProbe, kPaperGrid))
-      ->check(CLI::IsMember({"paper"}));
+                              "binary grid contoured at 1/2: vertices at edge midpoints). 'fast': a quick look (grid {} Å{}; "
+                              "areas about 1-1.5% below MSMS's). Options given explicitly still win",
+                              kPaperProbe, kPaperGrid, kFastGrid,
+                              for_map ? fmt::format(", mesh edges {} Å, no equalizing rounds", kFastMeshEdge) : ""))
+      ->check(CLI::IsMember({"paper", "fast"}));
   cmd->add_flag("--cavities", cavities,
                 "Carve internal cavities that hold a probe, as separate reported components (default: filled, as MSMS's "
                 "outer surface; with it, pockets within a probe diameter of the outside open into the outer surface)");
@@ -63,6 +64,15 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
     if (command->count("--grid") == 0) options.surface.grid = kPaperGrid;
     options.surface.contour_minimum_fraction = kPaperContourFraction;
     options.simplify.target_edge_length = 0;  // the paper maps its contour as it is
+  }
+  if (preset == "fast") {
+    if (command->count("--grid") == 0) options.surface.grid = kFastGrid;
+    // The surface command has neither option: it writes the contour as it is unless --mesh-edge is given.
+    const CLI::Option* equalizing = command->get_option_no_throw("--equalizing-rounds");
+    if (equalizing != nullptr) {
+      if (equalizing->count() == 0) options.map.max_equalizing_rounds = 0;
+      if (mesh_edge < 0) options.simplify.target_edge_length = kFastMeshEdge;
+    }
   }
   if (mesh_edge >= 0) {
     options.simplify.target_edge_length = mesh_edge;

@@ -420,6 +420,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
       const auto& atom = atoms[index];
       const double reach_i = reach[index];
+      std::int32_t burier = -1;
       for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) {
         const std::int32_t j = neighbours[static_cast<std::size_t>(m)];
         if (j <= index) continue;
@@ -442,6 +443,16 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         // (its farthest point from that sphere's centre is inside); only then are the intervals computed.
         // Only a sphere overlapping both can cover a point of the circle: the neighbours common to
         // index and j (both lists ascending), about half of index's.
+        auto holds_circle = [&](std::int32_t other) {
+          const Vec3 offset = atoms[other].position - centre;
+          const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
+          const double far = circle_radius + std::sqrt(b2);
+          return a * a + far * far < reach2[other] * (1 - 1e-12);
+        };
+        // The sphere that held index's previous circle often holds this one too (neighbouring circles of
+        // one atom): tried before the lists are merged. A sphere holding the circle overlaps both spheres,
+        // so it is among the common neighbours: the decision is the one the loop below would make.
+        if (burier >= 0 && burier != j && holds_circle(burier)) continue;
         common.clear();
         for (auto x = neighbour_start[index], y = neighbour_start[j]; x < neighbour_start[index + 1] && y < neighbour_start[j + 1];) {
           const std::int32_t p = neighbours[static_cast<std::size_t>(x)], q = neighbours[static_cast<std::size_t>(y)];
@@ -449,13 +460,8 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
           x += p <= q, y += q <= p;
         }
         bool buried = false;
-        for (std::size_t n = 0; n < common.size() && !buried; ++n) {
-          const std::int32_t other = common[n];
-          const Vec3 offset = atoms[other].position - centre;
-          const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
-          const double far = circle_radius + std::sqrt(b2);
-          buried = a * a + far * far < reach2[other] * (1 - 1e-12);
-        }
+        for (std::size_t n = 0; n < common.size() && !buried; ++n)
+          if (holds_circle(common[n])) buried = true, burier = common[n];
         if (buried) continue;
         terms.clear();
         bool whole = false;

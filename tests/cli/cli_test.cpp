@@ -240,6 +240,31 @@ TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
   EXPECT_EQ(settings("--preset paper --grid 1.5"), std::make_tuple(1.8, 1.5, 0.5));
 }
 
+TEST_F(Cli, FastPresetSetsGridMeshEdgeAndNoEqualizingAndExplicitOptionsWin) {
+  const fs::path input = folder_ / "three.pdb";
+  std::ofstream(input) << "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00  0.00           N\n"
+                          "ATOM      2  CA  ALA A   1       2.400   2.300   3.100  1.00  0.00           C\n"
+                          "ATOM      3  C   ALA A   1       3.100   3.500   2.600  1.00  0.00           C\nEND\n";
+  // grid, target edge, simplification tolerance, equalizing rounds, probe
+  auto settings = [&](const std::string& options) {
+    const fs::path out = folder_ / ("fast" + std::to_string(std::hash<std::string>{}(options)));
+    const auto run = run_cli("map " + input.string() + " -o " + out.string() + " " + options);
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    const auto report = nlohmann::json::parse(slurp(out / "report.json"));
+    return std::make_tuple(report["structure"]["grid"].get<double>(), report["simplification"]["target_edge_length"].get<double>(),
+                           report["simplification"]["max_error"].get<double>(),
+                           report["options"]["max_equalizing_rounds"].get<int>(), report["structure"]["probe"].get<double>());
+  };
+  EXPECT_EQ(settings(""), std::make_tuple(0.5, 1.0, 0.1, 12, 1.4));
+  EXPECT_EQ(settings("--preset fast"), std::make_tuple(1.0, 2.0, 0.2, 0, 1.4));
+  EXPECT_EQ(settings("--preset fast --grid 0.7 --mesh-edge 1.5 --equalizing-rounds 3"), std::make_tuple(0.7, 1.5, 0.15, 3, 1.4));
+  // The surface command has no map options: the preset sets its grid, and the contour is written as it is.
+  const fs::path surface = folder_ / "fast-surface.ply";
+  const auto run = run_cli("surface " + input.string() + " -o " + surface.string() + " --preset fast");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(fs::exists(surface));
+}
+
 TEST_F(Cli, PolesAreInputIndicesAndMustBeFarEnoughApart) {
   const Mesh ico = make_icosphere(2);
   const auto input = write_obj(folder_ / "ico.obj", ico);
