@@ -222,11 +222,16 @@ TEST_F(Cli, ComponentsOfAMolecularSurface) {
   EXPECT_FALSE(fs::exists(folder_ / "none"));
 }
 
-TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
-  const fs::path input = folder_ / "three.pdb";
-  std::ofstream(input) << "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00  0.00           N\n"
+// A three-atom PDB file (a quick structure for the preset tests).
+fs::path write_three_atoms(const fs::path& path) {
+  std::ofstream(path) << "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00  0.00           N\n"
                           "ATOM      2  CA  ALA A   1       2.400   2.300   3.100  1.00  0.00           C\n"
                           "ATOM      3  C   ALA A   1       3.100   3.500   2.600  1.00  0.00           C\nEND\n";
+  return path;
+}
+
+TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
+  const fs::path input = write_three_atoms(folder_ / "three.pdb");
   auto settings = [&](const std::string& options) {
     const fs::path out = folder_ / ("run" + std::to_string(std::hash<std::string>{}(options)));
     const auto run = run_cli("map " + input.string() + " -o " + out.string() + " " + options);
@@ -241,10 +246,7 @@ TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
 }
 
 TEST_F(Cli, FastPresetSetsGridMeshEdgeAndNoEqualizingAndExplicitOptionsWin) {
-  const fs::path input = folder_ / "three.pdb";
-  std::ofstream(input) << "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00  0.00           N\n"
-                          "ATOM      2  CA  ALA A   1       2.400   2.300   3.100  1.00  0.00           C\n"
-                          "ATOM      3  C   ALA A   1       3.100   3.500   2.600  1.00  0.00           C\nEND\n";
+  const fs::path input = write_three_atoms(folder_ / "three.pdb");
   // grid, target edge, simplification tolerance, equalizing rounds, probe
   auto settings = [&](const std::string& options) {
     const fs::path out = folder_ / ("fast" + std::to_string(std::hash<std::string>{}(options)));
