@@ -225,18 +225,23 @@ TEST_F(Cli, ComponentsOfAMolecularSurface) {
 // A three-atom PDB file (a quick structure for the preset tests).
 fs::path write_three_atoms(const fs::path& path) {
   std::ofstream(path) << "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00  0.00           N\n"
-                          "ATOM      2  CA  ALA A   1       2.400   2.300   3.100  1.00  0.00           C\n"
-                          "ATOM      3  C   ALA A   1       3.100   3.500   2.600  1.00  0.00           C\nEND\n";
+                         "ATOM      2  CA  ALA A   1       2.400   2.300   3.100  1.00  0.00           C\n"
+                         "ATOM      3  C   ALA A   1       3.100   3.500   2.600  1.00  0.00           C\nEND\n";
   return path;
+}
+
+// The report.json of `spheremap map input -o folder/<hash of options> options` (expected to succeed).
+nlohmann::json map_report(const fs::path& input, const fs::path& folder, const std::string& options) {
+  const fs::path out = folder / ("run" + std::to_string(std::hash<std::string>{}(options)));
+  const auto run = run_cli("map " + input.string() + " -o " + out.string() + " " + options);
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return nlohmann::json::parse(slurp(out / "report.json"));
 }
 
 TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
   const fs::path input = write_three_atoms(folder_ / "three.pdb");
   auto settings = [&](const std::string& options) {
-    const fs::path out = folder_ / ("run" + std::to_string(std::hash<std::string>{}(options)));
-    const auto run = run_cli("map " + input.string() + " -o " + out.string() + " " + options);
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    const auto report = nlohmann::json::parse(slurp(out / "report.json"));
+    const auto report = map_report(input, folder_ / "paper", options);
     return std::make_tuple(report["structure"]["probe"].get<double>(), report["structure"]["grid"].get<double>(),
                            report["structure"]["contour_minimum_fraction"].get<double>());
   };
@@ -249,10 +254,7 @@ TEST_F(Cli, FastPresetSetsGridMeshEdgeAndNoEqualizingAndExplicitOptionsWin) {
   const fs::path input = write_three_atoms(folder_ / "three.pdb");
   // grid, target edge, simplification tolerance, equalizing rounds, probe
   auto settings = [&](const std::string& options) {
-    const fs::path out = folder_ / ("fast" + std::to_string(std::hash<std::string>{}(options)));
-    const auto run = run_cli("map " + input.string() + " -o " + out.string() + " " + options);
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    const auto report = nlohmann::json::parse(slurp(out / "report.json"));
+    const auto report = map_report(input, folder_ / "fast", options);
     return std::make_tuple(report["structure"]["grid"].get<double>(), report["simplification"]["target_edge_length"].get<double>(),
                            report["simplification"]["max_error"].get<double>(),
                            report["options"]["max_equalizing_rounds"].get<int>(), report["structure"]["probe"].get<double>());
