@@ -417,10 +417,14 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     std::vector<std::int32_t> common;
     std::vector<Gap> gaps;
     std::vector<std::int64_t> linked;
+    // is_neighbour[k] == index: k is a neighbour of the atom `index` (the common neighbours of index and
+    // j are then j's neighbours so marked: one pass over j's list, in its ascending order).
+    std::vector<std::int32_t> is_neighbour(atoms.size(), -1);
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
       const auto& atom = atoms[index];
       const double reach_i = reach[index];
       std::int32_t burier = -1;
+      for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) is_neighbour[static_cast<std::size_t>(neighbours[static_cast<std::size_t>(m)])] = index;
       for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) {
         const std::int32_t j = neighbours[static_cast<std::size_t>(m)];
         if (j <= index) continue;
@@ -442,7 +446,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         // Most circles of a protein are buried: skip the circle when one enlarged sphere holds all of it
         // (its farthest point from that sphere's centre is inside); only then are the intervals computed.
         // Only a sphere overlapping both can cover a point of the circle: the neighbours common to
-        // index and j (both lists ascending), about half of index's.
+        // index and j (in ascending order), about half of index's.
         auto holds_circle = [&](std::int32_t other) {
           const Vec3 offset = atoms[other].position - centre;
           const double a = dot(offset, unit_axis), b2 = std::max(0.0, dot(offset, offset) - a * a);
@@ -453,12 +457,14 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
         // one atom): tried before the lists are merged. A sphere holding the circle overlaps both spheres,
         // so it is among the common neighbours: the decision is the one the loop below would make.
         if (burier >= 0 && burier != j && holds_circle(burier)) continue;
-        common.clear();
-        for (auto x = neighbour_start[index], y = neighbour_start[j]; x < neighbour_start[index + 1] && y < neighbour_start[j + 1];) {
-          const std::int32_t p = neighbours[static_cast<std::size_t>(x)], q = neighbours[static_cast<std::size_t>(y)];
-          if (p == q) common.push_back(p);
-          x += p <= q, y += q <= p;
+        common.resize(static_cast<std::size_t>(neighbour_start[j + 1] - neighbour_start[j]));
+        std::size_t shared = 0;
+        for (auto y = neighbour_start[j]; y < neighbour_start[j + 1]; ++y) {
+          const std::int32_t q = neighbours[static_cast<std::size_t>(y)];
+          common[shared] = q;
+          shared += is_neighbour[static_cast<std::size_t>(q)] == index;
         }
+        common.resize(shared);
         bool buried = false;
         for (std::size_t n = 0; n < common.size() && !buried; ++n)
           if (holds_circle(common[n])) buried = true, burier = common[n];
