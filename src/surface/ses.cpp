@@ -815,14 +815,19 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
   // open[segment]: some sample of the segment is above `settled`.
   std::vector<std::uint8_t> open(static_cast<std::size_t>(segments * ny * nz));
   const T limit = static_cast<T>(settled);
-  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
+  // Sample by sample into bytes (a loop that vectorizes), then a segment's 8 bytes read as one word.
+  static_assert(kSegment == sizeof(std::uint64_t));
+  std::vector<std::vector<std::uint8_t>> above(static_cast<std::size_t>(threads), std::vector<std::uint8_t>(static_cast<std::size_t>(segments * kSegment), 0));
+  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int worker) {
+    std::uint8_t* over = above[static_cast<std::size_t>(worker)].data();
     for (std::int64_t j = 0; j < ny; ++j) {
       const T* values = field.values.data() + k * plane + j * nx;
       std::uint8_t* flags = open.data() + (k * ny + j) * segments;
+      for (std::int64_t i = 0; i < nx; ++i) over[i] = values[i] > limit;
       for (std::int64_t g = 0; g < segments; ++g) {
-        std::uint8_t any = 0;
-        for (std::int64_t i = g * kSegment; i < std::min(nx, (g + 1) * kSegment); ++i) any |= values[i] > limit;
-        flags[g] = any;
+        std::uint64_t word;
+        std::memcpy(&word, over + g * kSegment, sizeof word);
+        flags[g] = word != 0;
       }
     }
   });
