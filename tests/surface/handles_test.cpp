@@ -310,6 +310,33 @@ TEST(Handles, ATunnelIsFilledAtItsSmallestCrossSectionNotItsNarrowest) {
   expect_one_sphere(contour_isosurface(grid, 0));
 }
 
+TEST(Handles, AMembraneOneSampleThickHasItsTwoFacesClearOfItsSamples) {
+  // The filled samples take half a step past the level, so the membrane's faces cross the edges leaving
+  // it a fifth of a step out or more here; just past the level, they sat at the contour's minimum
+  // fraction (a tenth of a step), two faces a hair apart.
+  constexpr double h = 0.25;
+  auto grid = sampled_box({40, 40, 20}, h, {-4.875, -4.875, -2.375}, slit_tunnel);
+  const auto repair = repair_outer_genus(grid, 0);
+  ASSERT_EQ(repair.per_handle.changes.size(), 1u);
+  const auto& fill = repair.per_handle.changes.front();
+  ASSERT_TRUE(fill.filled);
+  const std::int64_t plane = grid.size[0] * grid.size[1], membrane_k = fill.samples.front() / plane;
+  for (const auto s : fill.samples) ASSERT_EQ(s / plane, membrane_k);
+  const double z = grid.point(0, 0, membrane_k)[2];
+  const Mesh contour = contour_isosurface(grid, 0);
+  int above = 0, below = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& p : contour.positions) {
+    if (std::abs(p[0]) > 0.5 || std::abs(p[1]) > 0.5 || std::abs(p[2] - z) >= h) continue;  // the tunnel's walls are at 0.6
+    nearest = std::min(nearest, std::abs(p[2] - z));
+    (p[2] > z ? above : below) += 1;
+  }
+  EXPECT_GT(above, 0);
+  EXPECT_GT(below, 0);
+  EXPECT_GT(nearest, 0.15 * h);
+  expect_one_sphere(contour);
+}
+
 // A ring of `count` balls of radius `ball` whose centres lie on a circle of radius `ring` (z = 0).
 double ring_of_balls(const Vec3& p, int count, double ring, double ball) {
   double best = -1e9;
