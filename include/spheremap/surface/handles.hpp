@@ -25,10 +25,12 @@ struct HandleCut {
 ///   by decreasing value only when simple — their link (14 lattice neighbours, a triangulated sphere)
 ///   meets the set in a non-empty connected part whose complement in the link is non-empty and
 ///   connected (for a full subcomplex of a 2-sphere this is contractibility, by Alexander duality), so
-///   the set stays a ball; inside samples never added (where a loop would close) go just below `level`;
-///   other pieces too;
+///   the set stays a ball; inside samples never added (where a loop would close) go half a grid step
+///   below `level`; other pieces too;
 /// - fill: the same growth of the outside from the whole grid border, by decreasing distance to the
-///   solid; outside samples never added (spanning tunnels, and cavities) go just above `level`.
+///   solid; outside samples never added (spanning tunnels, and cavities) go half a grid step above
+///   `level` (half a step, not just past it, so that a change one sample thick contours to two faces
+///   clear of each other).
 /// Preconditions: some sample > level, every border sample <= level. Throws std::invalid_argument
 /// otherwise. Returns what changed (area_change as contour_isosurface(field, level, threads,
 /// minimum_fraction) measures it); modifies `field`.
