@@ -120,6 +120,10 @@ class BatchLock {
   ~BatchLock();
   BatchLock(const BatchLock&) = delete;
   BatchLock& operator=(const BatchLock&) = delete;
+  /// In a process forked while the lock is held: closes this process's copy of the lock's descriptor, so
+  /// that the lock ends with the process that took it, not with the last of its children (a flock
+  /// belongs to the open file, which a fork shares). Does not throw.
+  void forget_in_child() const noexcept;
 
  private:
   int descriptor_ = -1;

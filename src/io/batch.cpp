@@ -607,6 +607,10 @@ BatchLock::~BatchLock() {
   if (descriptor_ >= 0) ::close(descriptor_);  // closing releases the flock
 }
 
+void BatchLock::forget_in_child() const noexcept {
+  if (descriptor_ >= 0) ::close(descriptor_);  // this process's descriptor only: the parent keeps the lock
+}
+
 nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
   const auto& job = options.job;
   Json weights = Json::array();
@@ -830,6 +834,8 @@ BatchResult run_batch(const fs::path& root, const std::vector<BatchInput>& input
     const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid == 0) {
+      // A batch killed at once is resumed at once: its lock must not outlive it in a child still dying.
+      lock.forget_in_child();
       ::prctl(PR_SET_PDEATHSIG, SIGKILL);
       if (::getppid() != parent) ::_exit(0);
       ::signal(SIGINT, SIG_IGN);

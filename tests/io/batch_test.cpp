@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -394,6 +395,30 @@ TEST_F(Batch, OneBatchPerFolderAtATime) {
   EXPECT_THROW(BatchLock(folder_ / "out"), InputError);
   write_ply(folder_ / "in" / "ico.ply", make_icosphere(1));
   EXPECT_THROW(run_batch(folder_ / "out", name_batch_inputs({folder_ / "in" / "ico.ply"}), fast_options()), InputError);
+}
+
+// The lock is the batch's: a child forked to map an input (which outlives a killed batch by the time
+// its PDEATHSIG takes) must not keep it, or a batch resumed at once is refused.
+TEST_F(Batch, TheLockEndsWithTheBatchNotWithAChildItForked) {
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  std::optional<BatchLock> lock(std::in_place, folder_ / "out");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    lock->forget_in_child();
+    const char byte = 1;
+    if (::write(ready[1], &byte, 1) != 1) ::_exit(2);
+    ::pause();  // alive, as a child still dying is, until the test kills it
+    ::_exit(0);
+  }
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1);
+  lock.reset();  // the batch ends; its child lives on
+  EXPECT_NO_THROW(BatchLock(folder_ / "out"));
+  ::kill(child, SIGKILL);
+  ::waitpid(child, nullptr, 0);
+  ::close(ready[0]), ::close(ready[1]);
 }
 
 TEST_F(Batch, StopRequestFinishesTheRunningInputAndLeavesTheRestPending) {
