@@ -102,6 +102,15 @@ void mark_accessible_surface(Grid3<T>& field, const std::vector<Atom>& atoms, do
 // samples that the lattice does not join to the border. Float holds these integers exactly up to 2^24.
 constexpr std::int64_t kMaximumPockets = (std::int64_t{1} << 23) - 2;
 
+// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
+// the SAS, or a pocket beyond kMaximumPockets).
+template <typename T>
+inline std::int64_t label_of(T value) {
+  if (value == T(0)) return 0;
+  if (!(value < std::numeric_limits<T>::infinity())) return -1;
+  return static_cast<std::int64_t>(value) - 1;
+}
+
 // Union-find on integer nodes, smaller root wins (deterministic).
 class Components {
  public:
@@ -125,17 +134,30 @@ class Components {
   std::vector<std::int64_t> parent_;
 };
 
+// A run of samples along axis 0 that are all in pocket `label`: [first, first + length).
+struct PocketRun {
+  std::int64_t first;
+  std::int32_t length;
+  std::int32_t label;
+};
+
+struct Pockets {
+  std::int64_t count = 0;
+  std::vector<PocketRun> runs;  // every sample labelled as a pocket, in sample order
+};
+
 // Outside samples connected to the grid border through the lattice become 0; every other 6-connected set
 // of outside samples (a pocket as far as the lattice can tell) gets its own label, pockets numbered in
 // the order of their first sample (see kMaximumPockets; beyond that many, pockets are +infinity: never
-// carved). Returns the number of pockets.
+// carved). Returns the pockets and where their samples are (so that resolving them later touches only
+// those samples, not the whole grid).
 //
 // By runs: the outside samples of each row form runs, found plane by plane in parallel; runs that touch
 // (the same row in adjacent planes, or adjacent rows of a plane, with overlapping spans) are joined by
 // union-find (smaller root wins); each set's labels are then written back plane by plane. The sets and
 // their first samples do not depend on the order of the joins, so neither do the labels.
 template <typename T>
-std::int64_t flood_and_label_pockets(Grid3<T>& field, int threads) {
+Pockets flood_and_label_pockets(Grid3<T>& field, int threads) {
   const auto [nx, ny, nz] = field.size;
   const T unreached = static_cast<T>(kUnreached);
   const std::int64_t plane = nx * ny;
@@ -167,7 +189,7 @@ std::int64_t flood_and_label_pockets(Grid3<T>& field, int threads) {
   std::vector<std::int64_t> plane_first(static_cast<std::size_t>(nz) + 1, 0);  // global index of each plane's first run
   for (std::int64_t k = 0; k < nz; ++k) plane_first[static_cast<std::size_t>(k) + 1] = plane_first[static_cast<std::size_t>(k)] + static_cast<std::int64_t>(plane_runs[static_cast<std::size_t>(k)].size());
   const std::int64_t total = plane_first.back();
-  if (total == 0) return 0;
+  if (total == 0) return {};
   Components sets(static_cast<std::size_t>(total));
   // Joins the runs of row (j, k) with those of row (j', k') they overlap (both lists increasing in i).
   auto join_rows = [&](std::int64_t k, std::int64_t j, std::int64_t k2, std::int64_t j2) {
@@ -212,6 +234,7 @@ std::int64_t flood_and_label_pockets(Grid3<T>& field, int threads) {
   for (std::size_t p = 0; p < pocket_roots.size(); ++p)
     value_of_root[static_cast<std::size_t>(pocket_roots[p].second)] =
         static_cast<std::int64_t>(p) < kMaximumPockets ? static_cast<T>(p + 2) : std::numeric_limits<T>::infinity();
+  std::vector<std::vector<PocketRun>> plane_pockets(static_cast<std::size_t>(nz));
   detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
     const auto& runs = plane_runs[static_cast<std::size_t>(k)];
     for (std::int64_t j = 0; j < ny; ++j) {
@@ -220,20 +243,17 @@ std::int64_t flood_and_label_pockets(Grid3<T>& field, int threads) {
         const Run& r = runs[static_cast<std::size_t>(x)];
         const T value = value_of_root[static_cast<std::size_t>(root_of[static_cast<std::size_t>(plane_first[static_cast<std::size_t>(k)] + x)])];
         std::fill(values + r.i0, values + r.i1 + 1, value);
+        if (const std::int64_t label = label_of(value); label > 0)
+          plane_pockets[static_cast<std::size_t>(k)].push_back({k * plane + j * nx + r.i0, r.i1 - r.i0 + 1, static_cast<std::int32_t>(label)});
       }
     }
   });
-  return std::min<std::int64_t>(static_cast<std::int64_t>(pocket_roots.size()), kMaximumPockets);
+  Pockets pockets;
+  pockets.count = std::min<std::int64_t>(static_cast<std::int64_t>(pocket_roots.size()), kMaximumPockets);
+  for (auto& part : plane_pockets) pockets.runs.insert(pockets.runs.end(), part.begin(), part.end());
+  return pockets;
 }
 
-// The reachability label of a sample value during the build: 0 (reached), p (pocket p), or -1 (inside
-// the SAS, or a pocket beyond kMaximumPockets).
-template <typename T>
-inline std::int64_t label_of(T value) {
-  if (value == T(0)) return 0;
-  if (!(value < std::numeric_limits<T>::infinity())) return -1;
-  return static_cast<std::int64_t>(value) - 1;
-}
 
 // A vertex of the SAS (a probe position touching three atoms): the atoms, ascending, and the side of the
 // plane of their centres it lies on (the two such positions are mirror images through that plane).
@@ -302,7 +322,7 @@ inline bool certainly_covered(const std::vector<CoverTerm>& terms, std::vector<s
 // every enlarged sphere. Pockets and arcs joined to the outside carve; the others do not (with
 // carve_cavities, everything joined to an outside sample carves).
 template <typename T>
-std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, std::int64_t pockets,
+std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, const Pockets& pockets,
                                         bool carve_cavities, int threads, StageClock& clock) {
   const double h = field.spacing;
   const auto [nx, ny, nz] = field.size;
@@ -567,7 +587,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   // Components of outside, pockets and arcs: nodes 0 (outside), 1..pockets, then the arcs in order.
   std::vector<std::int64_t> arc_start(static_cast<std::size_t>(chunks) + 1, 0);
   for (std::int64_t c = 0; c < chunks; ++c) arc_start[static_cast<std::size_t>(c) + 1] = arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
-  const std::int64_t first_arc = 1 + pockets;
+  const std::int64_t first_arc = 1 + pockets.count;
   Components components(static_cast<std::size_t>(first_arc + arc_start.back()));
   std::vector<std::pair<VertexKey, std::int64_t>> ends;
   for (std::int64_t c = 0; c < chunks; ++c) {
@@ -589,14 +609,9 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     carves[node] = root == 0 || root_carves[static_cast<std::size_t>(root)];
   }
   // Pockets a probe reaches become probe centres; the others +infinity.
-  const std::int64_t plane = nx * ny;
-  detail::parallel_chunks(nz, threads, [&](std::int64_t k, int) {
-    T* values = field.values.data() + k * plane;
-    for (std::int64_t s = 0; s < plane; ++s) {
-      const std::int64_t label = label_of(values[s]);
-      if (label > 0) values[s] = carves[static_cast<std::size_t>(label)] ? T(0) : std::numeric_limits<T>::infinity();
-    }
-  });
+  for (const PocketRun& run : pockets.runs)
+    std::fill_n(field.values.begin() + run.first, run.length,
+                carves[static_cast<std::size_t>(run.label)] ? T(0) : std::numeric_limits<T>::infinity());
 
   clock.lap("pockets");
   // A point of the SAS counts as a probe centre when its arc carves; other points (radial projections,
@@ -914,7 +929,7 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
   // probe reaches from outside count (as for MSMS's outer surface), unless cavities are carved too.
   mark_accessible_surface(field, atoms, probe, threads);
   clock.lap("accessible");
-  const std::int64_t pockets = flood_and_label_pockets(field, threads);
+  const Pockets pockets = flood_and_label_pockets(field, threads);
   clock.lap("flood");
   // Which pockets a probe reaches through passages narrower than a step, and more probe centres, on the
   // SAS surface itself (found before the transform, while carving samples are exactly the zeros).
