@@ -421,7 +421,8 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     return key;
   };
   constexpr double kTurn = 2 * std::numbers::pi;
-  detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
+  std::vector<std::vector<std::int32_t>> neighbour_marks(static_cast<std::size_t>(std::max(threads, 1)));
+  detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int worker) {
     ChunkArcs& out = chunk_arcs[static_cast<std::size_t>(chunk)];
     struct Covering {
       double start, length;
@@ -438,8 +439,10 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     std::vector<Gap> gaps;
     std::vector<std::int64_t> linked;
     // is_neighbour[k] == index: k is a neighbour of the atom `index` (the common neighbours of index and
-    // j are then j's neighbours so marked: one pass over j's list, in its ascending order).
-    std::vector<std::int32_t> is_neighbour(atoms.size(), -1);
+    // j are then j's neighbours so marked: one pass over j's list, in its ascending order). One array per
+    // worker: marks left by other atoms never equal `index`.
+    auto& is_neighbour = neighbour_marks[static_cast<std::size_t>(worker)];
+    if (is_neighbour.empty()) is_neighbour.assign(atoms.size(), -1);
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
       const auto& atom = atoms[index];
       const double reach_i = reach[index];
