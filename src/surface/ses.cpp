@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 #ifdef SPHEREMAP_SURFACE_STAGE_TIMES
 #include <chrono>
 #include <cstdio>
@@ -795,6 +796,101 @@ inline void lower_row_padded(double* values, std::int32_t, std::int32_t length, 
   lower_row(values, length, across, start);
 }
 
+// The same eight lanes at a time, for a row whose `padded` samples (a multiple of 8, at most length + 7)
+// may all be read and written; inlined into a function compiled for AVX2 (lower_interior_avx2) this is
+// one 256-bit operation per eight samples. The values are those of lower_row to the last bit.
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SPHEREMAP_LOWER_AVX2 1
+using Floats8 = float __attribute__((vector_size(32)));
+using Ints8 = std::int32_t __attribute__((vector_size(32)));
+
+template <int vectors>
+[[gnu::always_inline]] inline void lower_vectors8(float* values, Floats8 m, Floats8 end, Floats8 a, Floats8 s) {
+  const Floats8 eight = {8, 8, 8, 8, 8, 8, 8, 8};
+  for (int q = 0; q < vectors; ++q, m += eight) {
+    Floats8 old;
+    std::memcpy(&old, values + 8 * q, sizeof old);
+    const Floats8 dx = m + s;
+    const Floats8 value = a + dx * dx;
+    const Ints8 take = (value < old) & (m < end);
+    const Floats8 out = reinterpret_cast<Floats8>((reinterpret_cast<Ints8>(value) & take) | (reinterpret_cast<Ints8>(old) & ~take));
+    std::memcpy(values + 8 * q, &out, sizeof out);
+  }
+}
+
+[[gnu::always_inline]] inline void lower_row_padded8(float* values, std::int32_t padded, std::int32_t length, float across, float start) {
+  const Floats8 m = {0, 1, 2, 3, 4, 5, 6, 7};
+  const auto last = static_cast<float>(length);
+  const Floats8 end = {last, last, last, last, last, last, last, last};
+  const Floats8 a = {across, across, across, across, across, across, across, across};
+  const Floats8 s = {start, start, start, start, start, start, start, start};
+  switch (padded / 8) {
+    case 1: return lower_vectors8<1>(values, m, end, a, s);
+    case 2: return lower_vectors8<2>(values, m, end, a, s);
+    case 3: return lower_vectors8<3>(values, m, end, a, s);
+    default: break;
+  }
+  lower_row(values, length, across, start);
+}
+#endif
+
+// A row of the ball that lower_near_centres lowers around a centre's nearest sample.
+struct BallRow {
+  double dj, first;                  // dj; the offset of the row's first sample along axis 0 (-half)
+  std::int64_t offset, segment_row;  // of the first sample in the field; of the row's segments
+  std::int32_t half, padded, padded8, length;  // padded: to a multiple of 4; padded8: of 8
+};
+
+// Whether segment flags [i0 / kSegment, i1 / kSegment] of a row hold an open one. A row of at most
+// 2 kSegment + 1 samples spans at most three segments (its first, its last and the one between); `wide`
+// rows are checked segment by segment.
+[[gnu::always_inline]] inline bool any_open(const std::uint8_t* flags, std::int64_t i0, std::int64_t i1, bool wide) {
+  const auto g0 = static_cast<std::uint64_t>(i0) / kSegment, g1 = static_cast<std::uint64_t>(i1) / kSegment;
+  std::uint8_t any = flags[g0] | flags[g1] | flags[(g0 + g1) / 2];
+  if (wide)
+    for (auto g = g0 + 1; g < g1; ++g) any |= flags[g];
+  return any != 0;
+}
+
+// One centre away from the grid's border: its ball's rows in planes dk, dk + step, ... up to extent.
+struct InteriorBall {
+  float* centre_sample;                  // the centre's nearest sample
+  const std::uint8_t* centre_segments;   // the flags of its row
+  std::int64_t ci;                       // its index along axis 0
+  double fx, fy, fz;                     // centre - nearest sample (grid units)
+  const BallRow* rows;
+  const std::size_t* plane_rows;
+  std::int64_t extent;
+  bool wide;
+};
+
+template <int kLanes>
+[[gnu::always_inline]] inline void lower_interior(const InteriorBall& ball, std::int64_t dk, std::int64_t step) {
+  for (; dk <= ball.extent; dk += step) {
+    const double z = static_cast<double>(dk) - ball.fz, z2 = z * z;
+    const BallRow* end = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent + 1)];
+    for (const BallRow* row = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent)]; row != end; ++row) {
+      if (!any_open(ball.centre_segments + row->segment_row, ball.ci - row->half, ball.ci + row->half, ball.wide)) continue;
+      const double y = row->dj - ball.fy;
+      const auto across = static_cast<float>(z2 + y * y), start = static_cast<float>(row->first - ball.fx);
+#if defined(SPHEREMAP_LOWER_AVX2)
+      if constexpr (kLanes == 8) {
+        lower_row_padded8(ball.centre_sample + row->offset, row->padded8, row->length, across, start);
+        continue;
+      }
+#endif
+      lower_row_padded(ball.centre_sample + row->offset, row->padded, row->length, across, start);
+    }
+  }
+}
+
+void lower_interior_four_lanes(const InteriorBall& ball, std::int64_t dk, std::int64_t step) { lower_interior<4>(ball, dk, step); }
+#if defined(SPHEREMAP_LOWER_AVX2)
+[[gnu::target("avx2")]] void lower_interior_avx2(const InteriorBall& ball, std::int64_t dk, std::int64_t step) {
+  lower_interior<8>(ball, dk, step);
+}
+#endif
+
 // Lowers every sample within `radius` (grid units) of a centre (and some a little farther: any sample
 // may take its exact distance to a valid centre) to its squared distance in grid units², except where
 // every sample of the row's segments is at most `settled` (grid units²): such rows keep their values.
@@ -802,18 +898,13 @@ inline void lower_row_padded(double* values, std::int32_t, std::int32_t length, 
 // `radius` of the centre; they come from one table, so the inner loop has no square root or rounding.
 // Plane k belongs to chunk k % threads; min is exact and order-free, so the result is deterministic.
 template <typename T>
-void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, double settled, int threads) {
+void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, double radius, double settled, int threads, bool use_avx2) {
   const auto [nx, ny, nz] = field.size;
   const double reach = radius + std::sqrt(3.0) / 2 + 1e-9;
   const auto extent = static_cast<std::int64_t>(std::ceil(reach));
   const std::int64_t plane = nx * ny, segments = (nx + kSegment - 1) / kSegment;
   // The rows of the ball, plane by plane (dk ascending, then dj): offsets from the nearest sample.
-  struct Row {
-    double dj, first;                  // dj; the offset of the row's first sample along axis 0 (-half)
-    std::int64_t offset, segment_row;  // of the first sample in the field; of the row's segments
-    std::int32_t half, padded, length;
-  };
-  std::vector<Row> rows;
+  std::vector<BallRow> rows;
   std::vector<std::size_t> plane_rows;  // rows of plane dk: [plane_rows[dk + extent], plane_rows[dk + extent + 1])
   for (std::int64_t dk = -extent; dk <= extent; ++dk) {
     plane_rows.push_back(rows.size());
@@ -822,14 +913,12 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
       if (rest < 0) continue;
       const auto half = static_cast<std::int32_t>(std::floor(std::sqrt(rest)));
       rows.push_back({static_cast<double>(dj), static_cast<double>(-half), dk * plane + dj * nx - half, (dk * ny + dj) * segments, half,
-                      (2 * half + 1 + 3) / 4 * 4, 2 * half + 1});
+                      (2 * half + 1 + 3) / 4 * 4, (2 * half + 1 + 7) / 8 * 8, 2 * half + 1});
     }
   }
   plane_rows.push_back(rows.size());
-  // A row of at most 2 kSegment + 1 samples spans at most three segments: its first, its last and the
-  // one between.
   bool wide = false;
-  for (const Row& row : rows) wide = wide || row.length > 2 * kSegment + 1;
+  for (const BallRow& row : rows) wide = wide || row.length > 2 * kSegment + 1;
   // open[segment]: some sample of the segment is above `settled`.
   std::vector<std::uint8_t> open(static_cast<std::size_t>(segments * ny * nz));
   const T limit = static_cast<T>(settled);
@@ -849,13 +938,13 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
       }
     }
   });
-  auto any_open = [&](const std::uint8_t* flags, std::int64_t i0, std::int64_t i1) {
-    const auto g0 = static_cast<std::uint64_t>(i0) / kSegment, g1 = static_cast<std::uint64_t>(i1) / kSegment;
-    std::uint8_t any = flags[g0] | flags[g1] | flags[(g0 + g1) / 2];
-    if (wide)
-      for (auto g = g0 + 1; g < g1; ++g) any |= flags[g];
-    return any != 0;
-  };
+  // Interior balls of a float field go eight lanes at a time where the processor has AVX2.
+  auto lower_interior_rows = lower_interior_four_lanes;
+#if defined(SPHEREMAP_LOWER_AVX2)
+  if (use_avx2 && __builtin_cpu_supports("avx2")) lower_interior_rows = lower_interior_avx2;
+#else
+  (void)use_avx2;
+#endif
   detail::parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
     for (const auto& c : centres) {
       const std::int64_t ci = round_int(c[0]), cj = round_int(c[1]), ck = round_int(c[2]);
@@ -863,14 +952,18 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
       std::int64_t dk = -extent;
       dk += (((chunk - (ck + dk)) % threads) + threads) % threads;
       // Away from the border (the padded rows included), no row needs clipping.
-      if (ci - extent >= 0 && cj - extent >= 0 && ck - extent >= 0 && ci + extent + 3 < nx && cj + extent < ny && ck + extent < nz) {
+      if (ci - extent >= 0 && cj - extent >= 0 && ck - extent >= 0 && ci + extent + 7 < nx && cj + extent < ny && ck + extent < nz) {
         T* centre_sample = field.values.data() + ck * plane + cj * nx + ci;
         const std::uint8_t* centre_segments = open.data() + (ck * ny + cj) * segments;
+        if constexpr (std::is_same_v<T, float>) {
+          lower_interior_rows({centre_sample, centre_segments, ci, fx, fy, fz, rows.data(), plane_rows.data(), extent, wide}, dk, threads);
+          continue;
+        }
         for (; dk <= extent; dk += threads) {
           const double z = static_cast<double>(dk) - fz, z2 = z * z;
-          const Row* end = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent + 1)];
-          for (const Row* row = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent)]; row != end; ++row) {
-            if (!any_open(centre_segments + row->segment_row, ci - row->half, ci + row->half)) continue;
+          const BallRow* end = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent + 1)];
+          for (const BallRow* row = rows.data() + plane_rows[static_cast<std::size_t>(dk + extent)]; row != end; ++row) {
+            if (!any_open(centre_segments + row->segment_row, ci - row->half, ci + row->half, wide)) continue;
             const double y = row->dj - fy;
             lower_row_padded(centre_sample + row->offset, row->padded, row->length, static_cast<T>(z2 + y * y), static_cast<T>(row->first - fx));
           }
@@ -882,11 +975,11 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
         if (k < 0 || k >= nz) continue;
         const double z = static_cast<double>(dk) - fz, z2 = z * z;
         for (auto r = plane_rows[static_cast<std::size_t>(dk + extent)]; r < plane_rows[static_cast<std::size_t>(dk + extent + 1)]; ++r) {
-          const Row& row = rows[r];
+          const BallRow& row = rows[r];
           const std::int64_t j = cj + static_cast<std::int64_t>(row.dj);
           if (j < 0 || j >= ny) continue;
           const std::int64_t i0 = std::max<std::int64_t>(ci - row.half, 0), i1 = std::min<std::int64_t>(ci + row.half, nx - 1);
-          if (i0 > i1 || !any_open(open.data() + (k * ny + j) * segments, i0, i1)) continue;
+          if (i0 > i1 || !any_open(open.data() + (k * ny + j) * segments, i0, i1, wide)) continue;
           const double y = row.dj - fy;
           lower_row(field.values.data() + k * plane + j * nx + i0, static_cast<std::int32_t>(i1 - i0 + 1), static_cast<T>(z2 + y * y),
                     static_cast<T>(static_cast<double>(i0 - ci) - fx));
@@ -949,7 +1042,8 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
   // away, is within probe/h of that centre, hence not inside). 0.01 of a step keeps rounding away from
   // that bound; zeros cannot be lowered anyway.
   const double free_reach = probe / h - std::sqrt(3.0) - 0.01;
-  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), free_reach > 0 ? free_reach * free_reach : 0.0, threads);
+  lower_near_centres(field, centres, probe / h + std::sqrt(3.0) * (1 + 1e-9), free_reach > 0 ? free_reach * free_reach : 0.0, threads,
+                     options.use_avx2);
   clock.lap("lower");
   const std::int64_t plane = field.size[0] * field.size[1];
   detail::parallel_chunks(field.size[2], threads, [&](std::int64_t k, int) {

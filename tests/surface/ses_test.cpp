@@ -212,6 +212,22 @@ TEST(Ses, AProbePassesAChannelNarrowerThanTheGrid) {
   }
 }
 
+TEST(Ses, TheAvx2PathGivesTheSameFieldToTheLastBit) {
+#if defined(__GNUC__) && defined(__x86_64__)
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this processor has no AVX2: only the four-lane path runs here";
+#else
+  GTEST_SKIP() << "not an x86-64 build: there is no AVX2 path";
+#endif
+  std::vector<Atom> atoms = hollow_shell();
+  atoms.resize(300);
+  SurfaceOptions options;
+  options.grid = 0.25;  // rows of up to 17 samples: one to three 8-lane vectors
+  const auto eight_lanes = solvent_excluded_field_float(atoms, options);
+  options.use_avx2 = false;
+  const auto four_lanes = solvent_excluded_field_float(atoms, options);
+  EXPECT_EQ(eight_lanes.values, four_lanes.values);
+}
+
 TEST(Ses, ResultsDoNotDependOnTheNumberOfThreads) {
   std::vector<Atom> atoms = hollow_shell();
   atoms.resize(300);  // an open bowl: pockets, re-entrant parts and circles of every kind
