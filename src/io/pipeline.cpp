@@ -577,6 +577,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
         {"meridian_method", map.meridian_method},
         {"meridian_round", map.meridian_round},
         {"solver", map.solver_used},
+        {"elimination_order", map.elimination_order},
         {"gauss_seidel_sweeps", map.gauss_seidel_sweeps},
         {"gauss_seidel_converged", map.gauss_seidel_converged},
         {"weight_fallback_rows", map.weight_fallback_rows},

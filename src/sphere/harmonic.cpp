@@ -311,32 +311,113 @@ struct ReusableCholesky::State {
   }
 };
 
+namespace {
+
+// The unknowns of a mesh's systems (vertices not in `apart`), numbered in vertex order.
+struct Unknowns {
+  std::vector<std::int32_t> index;   // per vertex: its unknown number, -1 if apart
+  std::vector<std::int32_t> vertex;  // per unknown: its vertex
+};
+
+Unknowns number_unknowns(std::int32_t n, const std::vector<char>& apart) {
+  Unknowns unknowns;
+  unknowns.index.assign(n, -1);
+  for (std::int32_t v = 0; v < n; ++v)
+    if (!apart[v]) unknowns.index[v] = static_cast<std::int32_t>(unknowns.vertex.size()), unknowns.vertex.push_back(v);
+  return unknowns;
+}
+
+// Geometric nested dissection of the vertices not in `apart`, as vertex numbers.
+std::vector<std::int32_t> geometric_order_of(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                             const std::vector<char>& apart) {
+  const auto unknowns = number_unknowns(rings.vertex_count(), apart);
+  const auto count = static_cast<std::int32_t>(unknowns.vertex.size());
+  std::vector<Vec3> unknown_positions(static_cast<std::size_t>(count));
+  for (std::int32_t k = 0; k < count; ++k) unknown_positions[k] = positions[unknowns.vertex[k]];
+  // Only the pattern matters for the order: uniform weights.
+  const EdgeWeights uniform{std::vector<double>(rings.neighbors.size(), 1.0), true, 0};
+  const HarmonicProblem pattern_problem{&rings, &uniform, &positions, apart, {}};
+  const auto order = nested_dissection_order(problem_matrix(pattern_problem, unknowns.index, count), unknown_positions);
+  std::vector<std::int32_t> vertices(static_cast<std::size_t>(count));
+  for (std::int32_t k = 0; k < count; ++k) vertices[k] = unknowns.vertex[order[k]];
+  return vertices;
+}
+
+}  // namespace
+
+EliminationOrder geometric_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                             const std::vector<char>& always_fixed) {
+  return {geometric_order_of(rings, positions, always_fixed), "geometric"};
+}
+
+EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                         const std::vector<char>& always_fixed) {
+  const auto unknowns = number_unknowns(rings.vertex_count(), always_fixed);
+  const auto count = static_cast<std::int32_t>(unknowns.vertex.size());
+  if (count == 0) return {{}, "metis"};
+  // The upper triangle's pattern (with the diagonal), column by column, as cholmod_metis reads a
+  // symmetric matrix.
+  Cholmod cholmod;
+  std::size_t entries = static_cast<std::size_t>(count);
+  for (const auto v : unknowns.vertex)
+    for (const auto w : rings.ring(v)) entries += unknowns.index[w] >= 0 && unknowns.index[w] < unknowns.index[v];
+  cholmod_sparse* upper = cholmod_allocate_sparse(count, count, entries, 1, 1, 1, CHOLMOD_PATTERN, &cholmod.common);
+  if (!upper) throw std::bad_alloc();
+  auto* column_start = static_cast<int*>(upper->p);
+  auto* row_index = static_cast<int*>(upper->i);
+  std::int64_t next = 0;
+  std::vector<int> rows;
+  for (std::int32_t k = 0; k < count; ++k) {
+    column_start[k] = static_cast<int>(next);
+    rows.assign(1, k);
+    for (const auto w : rings.ring(unknowns.vertex[k]))
+      if (unknowns.index[w] >= 0 && unknowns.index[w] < k) rows.push_back(unknowns.index[w]);
+    std::sort(rows.begin(), rows.end());
+    for (const int row : rows) row_index[next++] = row;
+  }
+  column_start[count] = static_cast<int>(next);
+  std::vector<int> permutation(static_cast<std::size_t>(count));
+  const int ok = cholmod_metis(upper, nullptr, 0, /*postorder=*/1, permutation.data(), &cholmod.common);
+  cholmod_free_sparse(&upper, &cholmod.common);
+  if (!ok || cholmod.common.status != CHOLMOD_OK) return geometric_elimination_order(rings, positions, always_fixed);
+  EliminationOrder order{std::vector<std::int32_t>(static_cast<std::size_t>(count)), "metis"};
+  for (std::int32_t k = 0; k < count; ++k) order.vertices[k] = unknowns.vertex[permutation[k]];
+  return order;
+}
+
 ReusableCholesky::ReusableCholesky(const VertexRings& rings, const std::vector<Vec3>& positions,
                                    const std::vector<char>& always_fixed, const std::vector<std::int32_t>& last)
     : state_(std::make_unique<State>()) {
+  // The fill-reducing order of the unknowns that are not in `last`, then `last` in its order.
+  std::vector<char> ordered_apart = always_fixed;
+  for (auto v : last) ordered_apart[v] = 1;
+  auto rows = geometric_order_of(rings, positions, ordered_apart);
+  rows.insert(rows.end(), last.begin(), last.end());
+  analyse(rings, std::move(rows), last);
+}
+
+ReusableCholesky::ReusableCholesky(const VertexRings& rings, const EliminationOrder& order,
+                                   const std::vector<std::int32_t>& last)
+    : state_(std::make_unique<State>()) {
+  std::vector<char> is_last(static_cast<std::size_t>(rings.vertex_count()), 0);
+  for (auto v : last) is_last[v] = 1;
+  std::vector<std::int32_t> rows;
+  rows.reserve(order.vertices.size());
+  for (auto v : order.vertices)
+    if (!is_last[v]) rows.push_back(v);
+  rows.insert(rows.end(), last.begin(), last.end());
+  analyse(rings, std::move(rows), last);
+}
+
+void ReusableCholesky::analyse(const VertexRings& rings, std::vector<std::int32_t> vertex_of_row,
+                               const std::vector<std::int32_t>& last) {
   keep_openmp_serial();
   auto& s = *state_;
   s.rings = &rings;
   s.last = last;
   const auto n = rings.vertex_count();
-  // The fill-reducing order of the unknowns that are not in `last`, then `last` in its order.
-  std::vector<char> ordered_apart = always_fixed;
-  for (auto v : last) ordered_apart[v] = 1;
-  std::vector<std::int32_t> unknown_index(n, -1);
-  std::int32_t ordered = 0;
-  for (std::int32_t v = 0; v < n; ++v)
-    if (!ordered_apart[v]) unknown_index[v] = ordered++;
-  std::vector<Vec3> unknown_positions(static_cast<std::size_t>(ordered));
-  std::vector<std::int32_t> vertex_of_unknown(static_cast<std::size_t>(ordered));
-  for (std::int32_t v = 0; v < n; ++v)
-    if (unknown_index[v] >= 0) unknown_positions[unknown_index[v]] = positions[v], vertex_of_unknown[unknown_index[v]] = v;
-  // Only the pattern matters for the order: uniform weights.
-  const EdgeWeights uniform{std::vector<double>(rings.neighbors.size(), 1.0), true, 0};
-  const HarmonicProblem pattern_problem{&rings, &uniform, &positions, ordered_apart, {}};
-  const auto order = nested_dissection_order(problem_matrix(pattern_problem, unknown_index, ordered), unknown_positions);
+  s.vertex_of_row = std::move(vertex_of_row);
   s.row_of_vertex.assign(n, -1);
-  for (std::int32_t k = 0; k < ordered; ++k) s.vertex_of_row.push_back(vertex_of_unknown[order[k]]);
-  for (auto v : last) s.vertex_of_row.push_back(v);
   const auto unknowns = static_cast<std::int32_t>(s.vertex_of_row.size());
   for (std::int32_t k = 0; k < unknowns; ++k) s.row_of_vertex[s.vertex_of_row[k]] = k;
   // The lower triangle in the permuted order: column k holds its diagonal and every neighbour whose
@@ -376,7 +457,9 @@ ReusableCholesky::ReusableCholesky(const VertexRings& rings, const std::vector<V
   }
   column_start[unknowns] = static_cast<int>(next);
   // CHOLMOD postorders the elimination tree by default, which can move `last` away from the end (the
-  // fill is the same either way; the supernodal factorization was not measurably slower without it).
+  // fill is the same either way). METIS's orders come postordered by cholmod_metis (without that, their
+  // factorizations took 3x as long on a 78k-vertex molecular surface); the geometric one is left as it is
+  // (CHOLMOD's postorder made it faster there but slower on a subdivided cube).
   s.cholmod.common.postorder = false;
   s.cholmod.factor = cholmod_analyze(s.lower, &s.cholmod.common);
   if (!s.cholmod.factor || s.cholmod.common.status != CHOLMOD_OK)
@@ -386,6 +469,8 @@ ReusableCholesky::ReusableCholesky(const VertexRings& rings, const std::vector<V
 ReusableCholesky::~ReusableCholesky() = default;
 
 const std::vector<std::int32_t>& ReusableCholesky::last() const { return state_->last; }
+
+double ReusableCholesky::flops() const { return state_->cholmod.common.fl; }
 
 bool ReusableCholesky::factorize(const HarmonicProblem& problem) {
   auto& s = *state_;
@@ -447,10 +532,12 @@ void ReusableCholesky::solve(const HarmonicProblem& problem, std::vector<double>
   if (!last_fixed) {
     solution = cholmod_solve(CHOLMOD_A, s.cholmod.factor, rhs, &s.cholmod.common);
   } else {
-    // With `last` ordered last, the leading block of L is the Cholesky factor of the system without
-    // them: forward substitution, then the trailing part of the intermediate set to zero (so the
-    // trailing unknowns come out 0 and drop out of the leading rows), then back substitution.
-    cholmod_dense* forward = cholmod_solve(CHOLMOD_L, s.cholmod.factor, rhs, &s.cholmod.common);
+    // With `last` ordered last, the leading blocks of L (and D) factor the system without them:
+    // forward substitution through LD, then the trailing part of the intermediate set to zero (so the
+    // trailing unknowns come out 0 and drop out of the leading rows), then back substitution through
+    // L'. LD, not L: CHOLMOD factors as LDL' where it chooses a simplicial factorization (small or
+    // well-ordered systems: fl/lnz below 40), and as LL' (D = I) where it chooses a supernodal one.
+    cholmod_dense* forward = cholmod_solve(CHOLMOD_LD, s.cholmod.factor, rhs, &s.cholmod.common);
     if (forward) {
       auto* y = static_cast<double*>(forward->x);
       std::fill(y + kept, y + unknowns, 0.0);

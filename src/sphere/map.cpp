@@ -68,6 +68,25 @@ constexpr int kEqualizingPatience = 2;
 constexpr double kEqualizingMinGain = 0.02;
 constexpr int kEqualizingMinRounds = 3;  // before that, a small gain may precede large ones (ajc_beast)
 
+// Fill-reducing orders (harmonic.hpp). The geometric nested dissection is nearly free and as good as
+// METIS's on smooth shapes (a subdivided cube: the same flops), but a plane cuts a molecular surface
+// along long curves. Judged by fl / n^1.5 of the geometric order (a good nested dissection of a surface
+// mesh needs O(n^1.5) flops): measured 27-44 on most of ../shared/data/meshes and the cube, 57-96 on
+// bumpy and many-limbed ones, 37-53 on molecular surfaces of 1-10k vertices and 78-96 on larger ones
+// (2src, 4hhb, 5hr7), where METIS's order needs 4-13x fewer flops (its own ratio: 7-31 on all of them).
+// METIS's order costs about 4.5 µs per vertex (AMD EPYC, 2026-11-25). The plain map factorizes twice:
+// METIS pays there only on large, convoluted surfaces (5hr7, 78k vertices: two factorizations of 0.46 s
+// against 0.36 s of ordering plus two of 0.11 s; 31-37k-vertex molecular surfaces mapped without
+// re-weighting took 0.07-0.19 s longer with it). Re-weighting factorizes once per round, so it
+// takes METIS's order unless the geometric one is fairly good or the mesh is small: on the smooth shapes
+// (ratio 37-44: ajc_horse, libigl_armadillo, pmp_bunny) METIS's 2-6x fewer flops saved less time per
+// round than its ordering cost over their 5-8 rounds (factorizations of 50k vertices are dominated by
+// per-supernode overhead, not flops).
+constexpr double kMetisForPlainMap = 60;
+constexpr std::size_t kMetisForPlainMapVertices = 50000;
+constexpr double kMetisForReweighting = 45;
+constexpr std::size_t kMetisForReweightingVertices = 10000;
+
 class StageTimer {
  public:
   explicit StageTimer(std::vector<StageTime>& out) : out_(out), start_(Clock::now()) {}
@@ -351,6 +370,20 @@ struct ReweightingOutcome {
   std::optional<Finished> finished;  // the best round finished (superposed, untangled, certified), if tried
 };
 
+// The fill-reducing order for the Cholesky factorizations of one map: METIS's when it is worth it, else
+// the geometric one (computed afresh for each analysis: it is nearly free).
+struct OrderChoice {
+  std::vector<char> always_fixed;           // poles and rings: fixed in every system of the map
+  std::optional<detail::EliminationOrder> metis;
+  double geometric_flops_ratio = 0;         // fl / n^1.5 of the plain map's geometric order (0: not known)
+};
+
+std::unique_ptr<detail::ReusableCholesky> make_factor(const WorkingMesh& work, const OrderChoice& order,
+                                                      const std::vector<std::int32_t>& last = {}) {
+  if (order.metis) return std::make_unique<detail::ReusableCholesky>(work.rings, *order.metis, last);
+  return std::make_unique<detail::ReusableCholesky>(work.rings, work.positions, order.always_fixed, last);
+}
+
 // Collapse: harmonic z and φ decay exponentially along pockets and limbs that lead to neither pole, so
 // their triangles keep 1e-9 to 1e-22 of their share of the sphere. Each vertex j gets a gain g_j and
 // edge (i, j) weighs base_ij · g_i · g_j (symmetric base weights: the Cholesky path; otherwise
@@ -360,17 +393,16 @@ struct ReweightingOutcome {
 ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh& work, std::int32_t north,
                                              std::int32_t south, double mercator_c,
                                              const detail::EdgeWeights& base, const MapOptions& options,
-                                             const VertexRings& input_rings, Candidate plain) {
+                                             const VertexRings& input_rings, Candidate plain, OrderChoice& order) {
   const auto n = static_cast<std::int32_t>(mesh.positions.size());
   const auto count = work.rings.vertex_count();
   ReweightingOutcome outcome{std::move(plain), 0, 0, std::nullopt};
   // The sparsity pattern is the same in every round: one ordering and symbolic analysis (again only
   // if the kept meridian changes), one numeric factorization per round for both z and φ.
   const bool reuse = options.solver == Solver::kDirect && base.symmetric;
-  std::vector<char> always_fixed(count, 0);
-  always_fixed[north] = always_fixed[south] = 1;
-  for (auto v : work.rings.ring(north)) always_fixed[v] = 1;
-  for (auto v : work.rings.ring(south)) always_fixed[v] = 1;
+  if (reuse && !order.metis && order.geometric_flops_ratio > kMetisForReweighting &&
+      work.positions.size() >= kMetisForReweightingVertices)
+    order.metis = detail::metis_elimination_order(work.rings, work.positions, order.always_fixed);
   std::unique_ptr<detail::ReusableCholesky> factor;
 
   std::vector<double> log_gain(count, 0.0), proposal(count), signal(count), smoothed(count);
@@ -395,7 +427,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
       const auto& meridian = outcome.best.planar.meridian;
       const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
       if (!factor || factor->last() != interior)
-        factor = std::make_unique<detail::ReusableCholesky>(work.rings, work.positions, always_fixed, interior);
+        factor = make_factor(work, order, interior);
     }
     Candidate candidate;
     candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar, round);
@@ -539,6 +571,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   std::vector<Vec3> sphere;
   PlanarCoordinates planar;
   detail::EdgeWeights weights;
+  OrderChoice order;
   if (result.pole_graph_distance < 4) {
     // Too few edges between the poles: below 3 the rings are not disjoint (tetrahedron, octahedron,
     // bipyramids); at 3 an edge can join the two rings and land on antipodal points. Map a midpoint
@@ -597,8 +630,24 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     result.mercator_c = kRingZ / std::log((1 + std::cos(result.theta0)) / std::sin(result.theta0));
     weights = detail::compute_weights(work.rings, work.positions, options.weights);
     result.weight_fallback_rows = weights.fallback_rows;
+    order.always_fixed.assign(work.positions.size(), 0);
+    order.always_fixed[north] = order.always_fixed[south] = 1;
+    for (auto v : work.rings.ring(north)) order.always_fixed[v] = 1;
+    for (auto v : work.rings.ring(south)) order.always_fixed[v] = 1;
     timer.lap("rings");
-    planar = solve_planar(work, north, south, weights, options);
+    // z and φ of the plain map from one analysis (φ's meridian as decoupled rows).
+    std::unique_ptr<detail::ReusableCholesky> plain_factor;
+    if (options.solver == Solver::kDirect && weights.symmetric) {
+      plain_factor = make_factor(work, order);
+      const double vertices = static_cast<double>(work.positions.size());
+      order.geometric_flops_ratio = plain_factor->flops() / (vertices * std::sqrt(vertices));
+      if (order.geometric_flops_ratio > kMetisForPlainMap && work.positions.size() >= kMetisForPlainMapVertices) {
+        order.metis = detail::metis_elimination_order(work.rings, work.positions, order.always_fixed);
+        plain_factor = make_factor(work, order);
+      }
+    }
+    planar = solve_planar(work, north, south, weights, options, plain_factor.get());
+    plain_factor.reset();
     result.solver_used = planar.z_stats.solver;
     result.gauss_seidel_sweeps = planar.z_stats.sweeps + planar.phi_stats.sweeps;
     result.gauss_seidel_converged = planar.z_stats.converged && planar.phi_stats.converged;
@@ -615,7 +664,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   std::optional<Finished> finished;
   if (options.repair && result.method == "poles-and-rings" && result.plain_certificate.collapsed > 0) {
     auto outcome = reweight_against_collapse(mesh, work, north, south, result.mercator_c, weights, options, input_rings,
-                                             Candidate{planar, sphere, result.plain_certificate});
+                                             Candidate{planar, sphere, result.plain_certificate}, order);
     planar = std::move(outcome.best.planar);
     sphere = std::move(outcome.best.sphere);
     finished = std::move(outcome.finished);
@@ -625,6 +674,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     timer.lap("reweight");
   }
   if (!finished) finished = finish_map(mesh, input_rings, std::move(sphere), options, &timer);
+  if (order.geometric_flops_ratio > 0) result.elimination_order = order.metis ? order.metis->method : "geometric";
   result.superposition = finished->superposition;
   result.untangling_moves = finished->untangling_moves;
   result.certificate = std::move(finished->certificate);
@@ -636,7 +686,9 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   const std::array<double, 9> inverse{r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]};
   for (std::int32_t v = 0; v < n; ++v) {
     const Vec3 u = rotate(inverse, sphere[v]);
-    result.theta[v] = std::acos(std::clamp(u[2], -1.0, 1.0));
+    // atan2, not acos(u_z): rotating back rounds a pole's z to 1 - 2^-53 at worst, where acos is
+    // 2e-8 away from 0; atan2 keeps full precision near the poles.
+    result.theta[v] = std::atan2(std::hypot(u[0], u[1]), u[2]);
     double phi = std::atan2(u[1], u[0]);
     if (phi < 0) phi += 2 * kPi;
     if (phi >= 2 * kPi) phi = 0;  // -0 and tiny negatives round up to 2π

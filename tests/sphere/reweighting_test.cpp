@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <random>
 
@@ -184,28 +185,70 @@ TEST(Reweighting, ReusedFactorizationMatchesFreshSolves) {
   for (std::int32_t v = 0; v < n && last.size() < 20; v += 17)
     if (!always_fixed[v]) last.push_back(v);
 
-  detail::ReusableCholesky factor(rings, mesh.positions, always_fixed, last);
-  const detail::HarmonicProblem z_problem{&rings, &weights, &mesh.positions, always_fixed, {}};
-  ASSERT_TRUE(factor.factorize(z_problem));
-  auto reused = x, fresh = x;
-  factor.solve(z_problem, reused);
-  detail::solve_harmonic(z_problem, fresh, Solver::kDirect, 0, 0);
-  for (std::int32_t v = 0; v < n; ++v) EXPECT_NEAR(reused[v], fresh[v], 1e-9) << v;
+  // The geometric order computed for this set of unknowns, and METIS's order of all unknowns with
+  // `last` taken out and moved to the end.
+  const auto metis = detail::metis_elimination_order(rings, mesh.positions, always_fixed);
+  ASSERT_EQ(metis.method, "metis");
+  for (const bool use_metis : {false, true}) {
+    SCOPED_TRACE(use_metis ? "metis order" : "geometric order");
+    auto factor = use_metis ? std::make_unique<detail::ReusableCholesky>(rings, metis, last)
+                            : std::make_unique<detail::ReusableCholesky>(rings, mesh.positions, always_fixed, last);
+    const detail::HarmonicProblem z_problem{&rings, &weights, &mesh.positions, always_fixed, {}};
+    ASSERT_TRUE(factor->factorize(z_problem));
+    auto reused = x, fresh = x;
+    factor->solve(z_problem, reused);
+    detail::solve_harmonic(z_problem, fresh, Solver::kDirect, 0, 0);
+    for (std::int32_t v = 0; v < n; ++v) EXPECT_NEAR(reused[v], fresh[v], 1e-9) << v;
 
-  auto fixed_more = always_fixed;
-  auto y = x;
-  for (auto v : last) fixed_more[v] = 1, y[v] = 2 * unit(random) - 1;
-  const detail::HarmonicProblem phi_problem{&rings, &weights, &mesh.positions, fixed_more, {}};
-  auto through_leading_block = y, through_decoupled_rows = y, fresh_phi = y;
-  factor.solve(phi_problem, through_leading_block, true);
-  detail::solve_harmonic(phi_problem, fresh_phi, Solver::kDirect, 0, 0);
-  ASSERT_TRUE(factor.factorize(phi_problem));
-  factor.solve(phi_problem, through_decoupled_rows);
-  for (std::int32_t v = 0; v < n; ++v) {
-    EXPECT_NEAR(through_leading_block[v], fresh_phi[v], 1e-9) << v;
-    EXPECT_NEAR(through_decoupled_rows[v], fresh_phi[v], 1e-9) << v;
+    auto fixed_more = always_fixed;
+    auto y = x;
+    for (auto v : last) fixed_more[v] = 1, y[v] = 2 * unit(random) - 1;
+    const detail::HarmonicProblem phi_problem{&rings, &weights, &mesh.positions, fixed_more, {}};
+    auto through_leading_block = y, through_decoupled_rows = y, fresh_phi = y;
+    factor->solve(phi_problem, through_leading_block, true);
+    detail::solve_harmonic(phi_problem, fresh_phi, Solver::kDirect, 0, 0);
+    ASSERT_TRUE(factor->factorize(phi_problem));
+    factor->solve(phi_problem, through_decoupled_rows);
+    for (std::int32_t v = 0; v < n; ++v) {
+      EXPECT_NEAR(through_leading_block[v], fresh_phi[v], 1e-9) << v;
+      EXPECT_NEAR(through_decoupled_rows[v], fresh_phi[v], 1e-9) << v;
+    }
+    for (auto v : last) EXPECT_EQ(through_leading_block[v], y[v]);
   }
-  for (auto v : last) EXPECT_EQ(through_leading_block[v], y[v]);
+}
+
+// METIS's order (through CHOLMOD): every vertex that is not always fixed exactly once, the same on every
+// call; the analysis of its factor counts flops like the geometric one's (the map chooses by that count).
+TEST(Reweighting, MetisOrderIsARepeatablePermutationOfTheUnknowns) {
+  const Mesh mesh = prepare_mesh(perturb_vertices(make_icosphere(4), 0.2, 9)).mesh;
+  const auto n = static_cast<std::int32_t>(mesh.vertex_count());
+  const VertexRings rings = build_vertex_rings(n, mesh.triangles);
+  std::vector<char> always_fixed(n, 0);
+  for (std::int32_t pole : {0, 7}) {
+    always_fixed[pole] = 1;
+    for (auto w : rings.ring(pole)) always_fixed[w] = 1;
+  }
+  const auto metis = detail::metis_elimination_order(rings, mesh.positions, always_fixed);
+  ASSERT_EQ(metis.method, "metis");
+  std::vector<int> seen(n, 0);
+  for (auto v : metis.vertices) ++seen[v];
+  for (std::int32_t v = 0; v < n; ++v) EXPECT_EQ(seen[v], always_fixed[v] ? 0 : 1) << v;
+  EXPECT_EQ(detail::metis_elimination_order(rings, mesh.positions, always_fixed).vertices, metis.vertices);
+  const auto geometric = detail::geometric_elimination_order(rings, mesh.positions, always_fixed);
+  EXPECT_EQ(geometric.method, "geometric");
+  EXPECT_EQ(geometric.vertices.size(), metis.vertices.size());
+  const detail::ReusableCholesky by_metis(rings, metis), by_geometry(rings, geometric);
+  EXPECT_GT(by_metis.flops(), 0);
+  EXPECT_GT(by_geometry.flops(), 0);
+}
+
+// Small meshes keep the geometric order (nearly free); the report says which order was used.
+TEST(Reweighting, SmallMeshesUseTheGeometricOrder) {
+  const Mesh mesh = prepare_mesh(perturb_vertices(make_icosphere(3), 0.2, 5)).mesh;
+  EXPECT_EQ(map_to_sphere(mesh).elimination_order, "geometric");
+  MapOptions relaxed;
+  relaxed.solver = Solver::kGaussSeidel;
+  EXPECT_EQ(map_to_sphere(mesh, relaxed).elimination_order, "");
 }
 
 }  // namespace

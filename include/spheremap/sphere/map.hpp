@@ -82,6 +82,9 @@ struct SphereMap {
   int meridian_round = 0;
 
   std::string solver_used;  // e.g. "cholmod-llt", "umfpack-lu", "gauss-seidel"
+  /// Fill-reducing order of the Cholesky factorizations: "geometric" (our nested dissection) or "metis"
+  /// (where the geometric one needs far more flops, as on molecular surfaces); empty without them.
+  std::string elimination_order;
   std::int64_t gauss_seidel_sweeps = 0;
   bool gauss_seidel_converged = true;
   std::int64_t weight_fallback_rows = 0;  // vertices whose mean-value/cotangent weights were not finite
