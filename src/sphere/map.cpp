@@ -77,11 +77,11 @@ constexpr int kEqualizingMinRounds = 3;  // before that, a small gain may preced
 // METIS's order costs about 4.5 µs per vertex (AMD EPYC, 2026-11-25). The plain map factorizes twice:
 // METIS pays there only on large, convoluted surfaces (5hr7, 78k vertices: two factorizations of 0.46 s
 // against 0.36 s of ordering plus two of 0.11 s; 31-37k-vertex molecular surfaces mapped without
-// re-weighting took 0.07-0.19 s longer with it). Re-weighting factorizes once per round, so it
-// takes METIS's order unless the geometric one is fairly good or the mesh is small: on the smooth shapes
-// (ratio 37-44: ajc_horse, libigl_armadillo, pmp_bunny) METIS's 2-6x fewer flops saved less time per
-// round than its ordering cost over their 5-8 rounds (factorizations of 50k vertices are dominated by
-// per-supernode overhead, not flops).
+// re-weighting took 0.07-0.19 s longer with it). Re-weighting factorizes once per round, so it takes
+// METIS's order (see reweight_against_collapse for when) unless the geometric one is fairly good or the
+// mesh is small: on the smooth shapes (ratio 37-44: ajc_horse, libigl_armadillo, pmp_bunny) METIS's 2-6x
+// fewer flops saved less time per round than its ordering cost over their 5-8 rounds (factorizations of
+// 50k vertices are dominated by per-supernode overhead, not flops).
 constexpr double kMetisForPlainMap = 60;
 constexpr std::size_t kMetisForPlainMapVertices = 50000;
 constexpr double kMetisForReweighting = 45;
@@ -400,9 +400,13 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   // The sparsity pattern is the same in every round: one ordering and symbolic analysis (again only
   // if the kept meridian changes), one numeric factorization per round for both z and φ.
   const bool reuse = options.solver == Solver::kDirect && base.symmetric;
-  if (reuse && !order.metis && order.geometric_flops_ratio > kMetisForReweighting &&
-      work.positions.size() >= kMetisForReweightingVertices)
-    order.metis = detail::metis_elimination_order(work.rings, work.positions, order.always_fixed);
+  const bool metis_worth_it = order.geometric_flops_ratio > kMetisForReweighting && work.positions.size() >= kMetisForReweightingVertices;
+  // With equalizing rounds to come (up to 12 more factorizations) METIS's order is taken at once;
+  // without them most maps need one or two rounds, so the third factorization is the first in its order
+  // (measured on 45k vertices: 0.27-0.30 s per round in the geometric order, 0.08-0.09 s in METIS's; on
+  // 22k, 0.1 s of ordering for a round or two saves less than that).
+  const int geometric_factorizations = options.max_equalizing_rounds > 0 ? 0 : 2;
+  int factorizations = 0;
   std::unique_ptr<detail::ReusableCholesky> factor;
 
   std::vector<double> log_gain(count, 0.0), proposal(count), signal(count), smoothed(count);
@@ -412,22 +416,25 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   detail::EdgeWeights weights = base;
   // The map with edge weights base_ij · g_i · g_j, g = exp(proposal), from the reused factorization
   // (analysed again only when the best round's meridian changed).
+  std::vector<double> gain(count);
   auto solve_with_gains = [&](int round) {
+    for (std::int32_t v = 0; v < count; ++v) gain[v] = std::exp(proposal[v]);
     for (std::int32_t v = 0; v < count; ++v) {
       const auto ring = work.rings.ring(v);
-      const double gain_v = std::exp(proposal[v]);
       for (std::size_t k = 0; k < ring.size(); ++k) {
         const auto slot = work.rings.offsets[v] + static_cast<std::int64_t>(k);
-        const double gain_w = std::exp(proposal[ring[k]]);
         // g_v · g_w is the same product seen from either end: the weights stay exactly symmetric.
-        weights.values[slot] = base.values[slot] * (base.symmetric ? gain_v * gain_w : gain_w);
+        weights.values[slot] = base.values[slot] * (base.symmetric ? gain[v] * gain[ring[k]] : gain[ring[k]]);
       }
     }
     if (reuse) {
+      if (!order.metis && metis_worth_it && ++factorizations > geometric_factorizations) {
+        order.metis = detail::metis_elimination_order(work.rings, work.positions, order.always_fixed);
+        factor.reset();
+      }
       const auto& meridian = outcome.best.planar.meridian;
       const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
-      if (!factor || factor->last() != interior)
-        factor = make_factor(work, order, interior);
+      if (!factor || factor->last() != interior) factor = make_factor(work, order, interior);
     }
     Candidate candidate;
     candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar, round);
