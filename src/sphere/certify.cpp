@@ -74,7 +74,8 @@ double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 2 * std::atan2(triple_product, denominator);
 }
 
-Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sphere, double collapse_floor) {
+Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sphere, double collapse_floor,
+                               std::vector<double>* solid_angles) {
   if (sphere.size() != surface.positions.size())
     throw std::invalid_argument("certify_sphere_map: " + std::to_string(sphere.size()) + " sphere points for " +
                                 std::to_string(surface.positions.size()) + " surface vertices");
@@ -91,6 +92,7 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   constexpr double kFullSphere = 4 * std::numbers::pi;
   CompensatedSum solid_angle;
+  if (solid_angles) solid_angles->resize(surface.triangles.size());
   double min_area_ratio = kInfinity;
   bool any_positive = false;
   for (std::size_t index = 0; index < surface.triangles.size(); ++index) {
@@ -100,6 +102,7 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
     const Vec3& c = sphere[t[2]];
     const double omega = signed_solid_angle(a, b, c);
     solid_angle.add(omega);
+    if (solid_angles) (*solid_angles)[index] = omega;
 
     bool decided_exactly = false;
     const int orientation = orientation_sign(a, b, c, &decided_exactly);

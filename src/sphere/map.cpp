@@ -289,20 +289,34 @@ std::vector<Vec3> to_sphere(const PlanarCoordinates& planar, std::int32_t north,
   return sphere;
 }
 
-// Per-vertex normalized area ratio of the map on the working mesh (used to re-weight against collapse).
-std::vector<double> vertex_area_ratios(const WorkingMesh& work, const std::vector<Vec3>& sphere_all) {
+// Triangle areas of a mesh, which every round's area ratios divide by: computed once per map.
+struct TriangleAreas {
+  std::vector<double> area;
+  double total = 0;  // summed in triangle order
+};
+
+TriangleAreas triangle_areas(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  TriangleAreas areas;
+  areas.area.reserve(triangles.size());
+  for (const auto& t : triangles) {
+    areas.area.push_back(triangle_area(positions[t[0]], positions[t[1]], positions[t[2]]));
+    areas.total += areas.area.back();
+  }
+  return areas;
+}
+
+// Per-vertex normalized area ratio of the map on the working mesh (used to re-weight against collapse),
+// from the signed solid angles of its triangles.
+std::vector<double> vertex_area_ratios(const WorkingMesh& work, const TriangleAreas& areas, const std::vector<double>& solid_angles) {
   const auto n = static_cast<std::int64_t>(work.positions.size());
   std::vector<double> sphere_area(n, 0), surface_area(n, 0);
-  double total_surface = 0;
-  for (const auto& t : work.triangles) {
-    const double a = triangle_area(work.positions[t[0]], work.positions[t[1]], work.positions[t[2]]);
-    const double s = std::abs(signed_solid_angle(sphere_all[t[0]], sphere_all[t[1]], sphere_all[t[2]]));
-    total_surface += a;
-    for (auto v : t) surface_area[v] += a, sphere_area[v] += s;
+  for (std::size_t k = 0; k < work.triangles.size(); ++k) {
+    const double a = areas.area[k], s = std::abs(solid_angles[k]);
+    for (auto v : work.triangles[k]) surface_area[v] += a, sphere_area[v] += s;
   }
   std::vector<double> ratio(n, 1.0);
   for (std::int64_t v = 0; v < n; ++v) {
-    if (surface_area[v] > 0) ratio[v] = (sphere_area[v] / (4 * kPi)) / (surface_area[v] / total_surface);
+    if (surface_area[v] > 0) ratio[v] = (sphere_area[v] / (4 * kPi)) / (surface_area[v] / areas.total);
   }
   return ratio;
 }
@@ -314,23 +328,22 @@ std::vector<Vec3> all_sphere_points(const PlanarCoordinates& planar, std::int32_
 
 // Mean over the input's triangles of |r - 1|, r = (solid angle / 4π) / (area / total area): the
 // report's area distortion (metrics), computed here to judge equalizing rounds.
-double mean_area_distortion(const Mesh& mesh, const std::vector<Vec3>& sphere) {
-  double total = 0;
-  for (const auto& t : mesh.triangles) total += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-  if (!(total > 0) || mesh.triangles.empty()) return 0;
+double mean_area_distortion(const TriangleAreas& areas, const std::vector<double>& solid_angles) {
+  if (!(areas.total > 0) || areas.area.empty()) return 0;
   double sum = 0;
-  for (const auto& t : mesh.triangles) {
-    const double share = triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) / total;
-    const double solid = std::abs(signed_solid_angle(sphere[t[0]], sphere[t[1]], sphere[t[2]])) / (4 * kPi);
+  for (std::size_t k = 0; k < areas.area.size(); ++k) {
+    const double share = areas.area[k] / areas.total;
+    const double solid = std::abs(solid_angles[k]) / (4 * kPi);
     sum += share > 0 ? std::abs(solid / share - 1) : 0;
   }
-  return sum / static_cast<double>(mesh.triangles.size());
+  return sum / static_cast<double>(areas.area.size());
 }
 
 struct Candidate {
   PlanarCoordinates planar;
   std::vector<Vec3> sphere;  // of the input's vertices, before the superposition
   Certificate certificate;
+  std::vector<double> solid_angles;  // of the input's triangles on `sphere`, from the certificate
 };
 
 // The last steps of every map: superposition (first, so that the certificate is of the very numbers
@@ -340,6 +353,7 @@ struct Finished {
   std::vector<Vec3> sphere;
   Superposition superposition;
   Certificate certificate;
+  std::vector<double> solid_angles;  // of the input's triangles on `sphere`, from the certificate
   std::int64_t untangling_moves = 0;
   bool untangled = false;  // untangling ran
 };
@@ -350,13 +364,13 @@ Finished finish_map(const Mesh& mesh, const VertexRings& input_rings, std::vecto
   finished.superposition = superpose_sphere_on_surface(mesh.positions, sphere);
   for (auto& p : sphere) p = rotate(finished.superposition.rotation, p);
   if (timer) timer->lap("superpose");
-  finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor, &finished.solid_angles);
   if (options.repair && !finished.certificate.certified() && std::abs(finished.certificate.coverage - 1) < 1e-9) {
     finished.untangling_moves =
         detail::untangle_on_sphere(mesh, input_rings, sphere, options.collapse_floor, options.max_untangling_sweeps);
     finished.untangled = true;
     if (timer) timer->lap("untangle");
-    finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+    finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor, &finished.solid_angles);
   }
   if (timer) timer->lap("certify");
   finished.sphere = std::move(sphere);
@@ -410,7 +424,22 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   std::unique_ptr<detail::ReusableCholesky> factor;
 
   std::vector<double> log_gain(count, 0.0), proposal(count), signal(count), smoothed(count);
-  auto ratio = vertex_area_ratios(work, all_sphere_points(outcome.best.planar, north, south, mercator_c));
+  // Areas are the same every round; without split edges the working mesh is the input, and a candidate's
+  // solid angles (its certificate's) serve its area ratios and distortion too.
+  const TriangleAreas input_areas = triangle_areas(mesh.positions, mesh.triangles);
+  const bool split = work.triangles.size() != mesh.triangles.size();
+  const TriangleAreas work_areas = split ? triangle_areas(work.positions, work.triangles) : TriangleAreas{};
+  auto ratios_of = [&](const Candidate& candidate) {
+    if (!split) return vertex_area_ratios(work, input_areas, candidate.solid_angles);
+    const auto sphere_all = all_sphere_points(candidate.planar, north, south, mercator_c);
+    std::vector<double> solid_angles(work.triangles.size());
+    for (std::size_t k = 0; k < work.triangles.size(); ++k) {
+      const auto& t = work.triangles[k];
+      solid_angles[k] = signed_solid_angle(sphere_all[t[0]], sphere_all[t[1]], sphere_all[t[2]]);
+    }
+    return vertex_area_ratios(work, work_areas, solid_angles);
+  };
+  auto ratio = ratios_of(outcome.best);
   double max_step = kReweightingMaxStep;
   int rejections = 0;
   detail::EdgeWeights weights = base;
@@ -439,7 +468,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     Candidate candidate;
     candidate.planar = solve_planar(work, north, south, weights, options, factor.get(), &outcome.best.planar, round);
     candidate.sphere = to_sphere(candidate.planar, north, south, mercator_c, n);
-    candidate.certificate = certify_sphere_map(mesh, candidate.sphere, options.collapse_floor);
+    candidate.certificate = certify_sphere_map(mesh, candidate.sphere, options.collapse_floor, &candidate.solid_angles);
     return candidate;
   };
   for (int round = 1; round <= options.max_reweighting_rounds; ++round) {
@@ -484,7 +513,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     log_gain = proposal;
     outcome.best = std::move(candidate);
     outcome.finished.reset();
-    ratio = vertex_area_ratios(work, all_sphere_points(outcome.best.planar, north, south, mercator_c));
+    ratio = ratios_of(outcome.best);
     max_step = std::min(2 * max_step, kReweightingMaxStep);
     rejections = 0;
     // Few bad triangles left: untangling may certify this round, far more cheaply than another round.
@@ -503,11 +532,11 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   const bool certified_by_itself = outcome.best.certificate.certified();
   const bool certified_untangled = outcome.finished && outcome.finished->certificate.certified();
   if (!(certified_by_itself || certified_untangled) || options.max_equalizing_rounds <= 0) return outcome;
-  double distortion = mean_area_distortion(mesh, certified_by_itself ? outcome.best.sphere : outcome.finished->sphere);
+  double distortion = mean_area_distortion(input_areas, certified_by_itself ? outcome.best.solid_angles : outcome.finished->solid_angles);
   rejections = 0;
   double step_limit = kEqualizingStep;
+  auto vertex_ratio = ratios_of(outcome.best);
   for (int round = 1; round <= options.max_equalizing_rounds; ++round) {
-    const auto vertex_ratio = vertex_area_ratios(work, all_sphere_points(outcome.best.planar, north, south, mercator_c));
     double mean_log = 0;
     for (std::int32_t v = 0; v < count; ++v) {
       const double factor = std::clamp(std::pow(std::max(vertex_ratio[v], 1e-300), kEqualizingExponent), 1 / step_limit, step_limit);
@@ -523,11 +552,11 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     std::optional<Finished> untangled;
     const auto& cc = candidate.certificate;
     if (cc.certified()) {
-      candidate_distortion = mean_area_distortion(mesh, candidate.sphere);
+      candidate_distortion = mean_area_distortion(input_areas, candidate.solid_angles);
     } else if (cc.collapsed == 0 && std::abs(cc.coverage - 1) < 1e-9 &&
                cc.folded <= std::max<std::int64_t>(kUntanglingAttempt, static_cast<std::int64_t>(mesh.triangles.size()) / 100)) {
       untangled = finish_map(mesh, input_rings, candidate.sphere, options);
-      if (untangled->certificate.certified()) candidate_distortion = mean_area_distortion(mesh, untangled->sphere);
+      if (untangled->certificate.certified()) candidate_distortion = mean_area_distortion(input_areas, untangled->solid_angles);
     }
     if (!(candidate_distortion < distortion)) {
       step_limit = std::sqrt(step_limit);
@@ -544,6 +573,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     rejections = 0;
     step_limit = kEqualizingStep;
     if (small_gain && outcome.equalizing_rounds >= kEqualizingMinRounds) break;
+    vertex_ratio = ratios_of(outcome.best);
   }
   return outcome;
 }
@@ -661,7 +691,8 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     sphere = to_sphere(planar, north, south, result.mercator_c, n);
     timer.lap("solve");
   }
-  result.plain_certificate = certify_sphere_map(mesh, sphere, options.collapse_floor);
+  std::vector<double> plain_solid_angles;
+  result.plain_certificate = certify_sphere_map(mesh, sphere, options.collapse_floor, &plain_solid_angles);
   timer.lap("certify-plain");
 
   // The input's rings: the untangling works on the input's triangles, not the split working mesh.
@@ -671,7 +702,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   std::optional<Finished> finished;
   if (options.repair && result.method == "poles-and-rings" && result.plain_certificate.collapsed > 0) {
     auto outcome = reweight_against_collapse(mesh, work, north, south, result.mercator_c, weights, options, input_rings,
-                                             Candidate{planar, sphere, result.plain_certificate}, order);
+                                             Candidate{planar, sphere, result.plain_certificate, std::move(plain_solid_angles)}, order);
     planar = std::move(outcome.best.planar);
     sphere = std::move(outcome.best.sphere);
     finished = std::move(outcome.finished);

@@ -34,9 +34,10 @@ struct Certificate {
 
 /// Checks `sphere` (one unit vector per vertex of `surface`, same triangles) triangle by triangle.
 /// Preconditions: sphere.size() == surface.positions.size(); triangle indices valid; finite values.
-/// Throws std::invalid_argument if the sizes disagree.
+/// Throws std::invalid_argument if the sizes disagree. `solid_angles`, if given, receives each
+/// triangle's signed_solid_angle (the terms of total_solid_angle), for callers that need them too.
 Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sphere,
-                               double collapse_floor = kDefaultCollapseFloor);
+                               double collapse_floor = kDefaultCollapseFloor, std::vector<double>* solid_angles = nullptr);
 
 /// Signed solid angle of the spherical triangle abc (unit vectors), Van Oosterom & Strackee 1983.
 double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c);
