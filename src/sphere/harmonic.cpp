@@ -472,6 +472,8 @@ const std::vector<std::int32_t>& ReusableCholesky::last() const { return state_-
 
 double ReusableCholesky::flops() const { return state_->cholmod.common.fl; }
 
+bool ReusableCholesky::supernodal() const { return state_->cholmod.factor->is_super != 0; }
+
 bool ReusableCholesky::factorize(const HarmonicProblem& problem) {
   auto& s = *state_;
   const auto& rings = *s.rings;

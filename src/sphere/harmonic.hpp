@@ -103,6 +103,9 @@ class ReusableCholesky {
   [[nodiscard]] const std::vector<std::int32_t>& last() const;
   /// Floating-point operations of one numeric factorization (CHOLMOD's count from the analysis).
   [[nodiscard]] double flops() const;
+  /// Whether CHOLMOD chose a supernodal factorization (LL') rather than a simplicial one (LDL'): it does
+  /// when flops per nonzero of the factor are many (large, poorly ordered systems).
+  [[nodiscard]] bool supernodal() const;
 
  private:
   void analyse(const VertexRings& rings, std::vector<std::int32_t> vertex_of_row, const std::vector<std::int32_t>& last);

@@ -186,13 +186,17 @@ TEST(Reweighting, ReusedFactorizationMatchesFreshSolves) {
     if (!always_fixed[v]) last.push_back(v);
 
   // The geometric order computed for this set of unknowns, and METIS's order of all unknowns with
-  // `last` taken out and moved to the end.
+  // `last` taken out and moved to the end. On this mesh CHOLMOD factors the first as LL' (supernodal)
+  // and the second as LDL' (simplicial): the leading-block solve must hold for both (it once assumed LL'
+  // and gave a wrong φ with a simplicial factor).
   const auto metis = detail::metis_elimination_order(rings, mesh.positions, always_fixed);
   ASSERT_EQ(metis.method, "metis");
+  std::vector<bool> supernodal;
   for (const bool use_metis : {false, true}) {
     SCOPED_TRACE(use_metis ? "metis order" : "geometric order");
     auto factor = use_metis ? std::make_unique<detail::ReusableCholesky>(rings, metis, last)
                             : std::make_unique<detail::ReusableCholesky>(rings, mesh.positions, always_fixed, last);
+    supernodal.push_back(factor->supernodal());
     const detail::HarmonicProblem z_problem{&rings, &weights, &mesh.positions, always_fixed, {}};
     ASSERT_TRUE(factor->factorize(z_problem));
     auto reused = x, fresh = x;
@@ -215,6 +219,7 @@ TEST(Reweighting, ReusedFactorizationMatchesFreshSolves) {
     }
     for (auto v : last) EXPECT_EQ(through_leading_block[v], y[v]);
   }
+  EXPECT_EQ(supernodal, (std::vector<bool>{true, false})) << "both kinds of factor should be covered";
 }
 
 // METIS's order (through CHOLMOD): every vertex that is not always fixed exactly once, the same on every
