@@ -59,7 +59,7 @@ EliminationOrder geometric_elimination_order(const VertexRings& rings, const std
                                              const std::vector<char>& always_fixed);
 
 /// METIS's nested dissection (METIS_NodeND through CHOLMOD), postordered: the fewest flops on every mesh
-/// measured, but about 4-7 µs per vertex to compute (0.36 s for 78k vertices on the project's AMD EPYC
+/// measured, but about 4-7 µs per vertex to compute (0.36-0.51 s for 78k vertices on the project's AMD EPYC
 /// machine), so worth it when the geometric order is poor or many factorizations follow.
 /// Deterministic (METIS's fixed seed). Returns the geometric order if METIS fails (e.g. out of memory).
 EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
