@@ -21,7 +21,7 @@ TEST(DataPipeline, EveryStructureMapsCertifiedAtOneAngstrom) {
   if (!fs::exists(pdb)) GTEST_SKIP() << "shared data not found: " << pdb << " (skipped on purpose)";
   const std::vector<fs::path> files = testing_support::shared_structure_files(pdb);
   ASSERT_EQ(files.size(), 88u);
-  // 1 Å keeps the set (GroEL, 480k mapped vertices, included) within CI time: 4-5 minutes here.
+  // 1 Å keeps the set (GroEL, 480k mapped vertices, included) within CI time: about 2 minutes here.
   // The 0.5 and 0.25 Å runs are in BENCHMARKS.md (spheremap batch over the same folders).
   MapJobOptions options;
   options.surface.grid = 1.0;
