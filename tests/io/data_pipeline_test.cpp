@@ -59,9 +59,12 @@ TEST(DataPipeline, GroELMapsCertifiedAtTheDefaultGrid) {
   const auto& c = result.map.certificate;
   EXPECT_TRUE(c.certified()) << c.folded << " folded, " << c.collapsed << " collapsed, smallest ratio " << c.min_area_ratio;
   EXPECT_EQ(result.map.elimination_order, "metis");
-  std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds, %lld untangling moves, smallest ratio %.3g\n",
-              result.map.sphere.size(), result.map.reweighting_rounds, static_cast<long long>(result.map.untangling_moves),
-              c.min_area_ratio);
+  // Its equalizing rounds each collapse a few hundred triangles that untangling lifts again; before such
+  // rounds were untangled, none was kept (area distortion 186% instead of 134%).
+  EXPECT_GT(result.map.equalizing_rounds, 0);
+  std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds (%d equalizing), %lld untangling moves, smallest ratio %.3g\n",
+              result.map.sphere.size(), result.map.reweighting_rounds, result.map.equalizing_rounds,
+              static_cast<long long>(result.map.untangling_moves), c.min_area_ratio);
 }
 
 }  // namespace
