@@ -29,10 +29,11 @@ struct Star {
   std::vector<std::int32_t> triangles;  // triangle k = (v, ring[k], ring[k+1])
 };
 
-// A convex polygon clipped by half-planes a·p + b >= 0 (Sutherland–Hodgman), in a gnomonic chart.
+// A convex polygon clipped by half-planes a·p + b >= 0 (Sutherland–Hodgman), in a gnomonic chart, into
+// `out` (whose memory is reused: a move clips its star's polygon thousands of times).
 using Point2 = std::array<double, 2>;
-std::vector<Point2> clip(const std::vector<Point2>& polygon, double ax, double ay, double b) {
-  std::vector<Point2> out;
+void clip(const std::vector<Point2>& polygon, double ax, double ay, double b, std::vector<Point2>& out) {
+  out.clear();
   const auto size = polygon.size();
   for (std::size_t k = 0; k < size; ++k) {
     const auto& p = polygon[k];
@@ -44,7 +45,6 @@ std::vector<Point2> clip(const std::vector<Point2>& polygon, double ax, double a
       out.push_back({p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])});
     }
   }
-  return out;
 }
 
 class Untangler {
@@ -122,11 +122,13 @@ class Untangler {
     double extent = 0;
     for (const auto& c : chart) extent = std::max({extent, std::abs(c[0]), std::abs(c[1])});
     const std::vector<Point2> box{{-2 * extent, -2 * extent}, {2 * extent, -2 * extent}, {2 * extent, 2 * extent}, {-2 * extent, 2 * extent}};
-    auto region_for = [&](double t) {
-      auto polygon = box;
-      for (std::size_t k = 0; k < size && !polygon.empty(); ++k)
-        polygon = clip(polygon, lines[k][0], lines[k][1], lines[k][2] - t * scale[k]);
-      return polygon;
+    auto region_for = [&](double t) -> const std::vector<Point2>& {
+      polygon_ = box;
+      for (std::size_t k = 0; k < size && !polygon_.empty(); ++k) {
+        clip(polygon_, lines[k][0], lines[k][1], lines[k][2] - t * scale[k], clipped_);
+        polygon_.swap(clipped_);
+      }
+      return polygon_;
     };
     // Bisection on t for the largest t with a non-empty region: the point whose worst triangle is best.
     // t may be negative: when the kernel is empty the move still makes the worst fold less bad.
@@ -147,7 +149,7 @@ class Untangler {
       (region_for(middle).size() >= 3 ? low : high) = middle;
     }
     // Slightly inside the optimum, so that the region has an interior whose centroid is robust.
-    const auto region = region_for(low - 1e-3 * std::abs(low - current_t));
+    const auto& region = region_for(low - 1e-3 * std::abs(low - current_t));
     if (region.size() < 3) return false;
     Point2 mean{0, 0};
     for (const auto& q : region) mean[0] += q[0] / static_cast<double>(region.size()), mean[1] += q[1] / static_cast<double>(region.size());
@@ -162,15 +164,20 @@ class Untangler {
   std::int64_t run(int max_sweeps) {
     std::int64_t moves = 0;
     int neighbourhood = 0;  // 0: vertices of bad triangles; k: plus their k-ring
+    // Which triangles are bad, kept up to date: a triangle's badness depends on its corners only, so
+    // after the first scan only the triangles around moved vertices are checked again (a sweep over a
+    // million-triangle map with a few thousand bad ones re-checked every triangle: most of the time).
+    const auto triangles = static_cast<std::int32_t>(surface_.triangles.size());
+    std::vector<char> bad(static_cast<std::size_t>(triangles), 0);
+    std::int64_t bad_count = 0;
+    for (std::int32_t t = 0; t < triangles; ++t) bad_count += bad[t] = triangle_is_bad(t) ? 1 : 0;
+    std::vector<std::int32_t> moved_vertices;
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+      if (bad_count == 0) break;
       std::vector<char> active(sphere_.size(), 0);
-      bool any_bad = false;
-      for (std::int32_t t = 0; t < static_cast<std::int32_t>(surface_.triangles.size()); ++t) {
-        if (!triangle_is_bad(t)) continue;
-        any_bad = true;
-        for (auto v : surface_.triangles[t]) active[v] = 1;
-      }
-      if (!any_bad) break;
+      for (std::int32_t t = 0; t < triangles; ++t)
+        if (bad[t])
+          for (auto v : surface_.triangles[t]) active[v] = 1;
       for (int grow = 0; grow < neighbourhood; ++grow) {
         auto grown = active;
         for (std::int32_t v = 0; v < static_cast<std::int32_t>(active.size()); ++v)
@@ -178,9 +185,17 @@ class Untangler {
             for (auto w : rings_.ring(v)) grown[w] = 1;
         active.swap(grown);
       }
-      std::int64_t moved = 0;
+      moved_vertices.clear();
       for (std::int32_t v = 0; v < static_cast<std::int32_t>(active.size()); ++v)
-        if (active[v] && move(v)) ++moved;
+        if (active[v] && move(v)) moved_vertices.push_back(v);
+      for (const auto v : moved_vertices)
+        for (auto slot = rings_.offsets[v]; slot < rings_.offsets[v + 1]; ++slot) {
+          const auto t = star_triangle_[static_cast<std::size_t>(slot)];
+          const char now = triangle_is_bad(t) ? 1 : 0;
+          bad_count += now - bad[t];
+          bad[t] = now;
+        }
+      const auto moved = static_cast<std::int64_t>(moved_vertices.size());
       moves += moved;
       neighbourhood = moved == 0 ? std::min(neighbourhood + 1, 8) : 0;
     }
@@ -194,6 +209,7 @@ class Untangler {
   double floor_;
   std::vector<double> target_;
   std::vector<std::int32_t> star_triangle_;
+  std::vector<Point2> polygon_, clipped_;  // scratch of move's clipping
 };
 
 }  // namespace
