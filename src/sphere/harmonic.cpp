@@ -350,13 +350,16 @@ EliminationOrder geometric_elimination_order(const VertexRings& rings, const std
   return {geometric_order_of(rings, positions, always_fixed), "geometric"};
 }
 
-EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
-                                         const std::vector<char>& always_fixed) {
+namespace {
+
+// An order of the unknowns (vertices not in always_fixed) from one of CHOLMOD's orderings, which read the
+// upper triangle's pattern (with the diagonal) of a symmetric matrix, column by column.
+template <typename Ordering>
+EliminationOrder cholmod_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                           const std::vector<char>& always_fixed, const char* method, Ordering&& ordering) {
   const auto unknowns = number_unknowns(rings.vertex_count(), always_fixed);
   const auto count = static_cast<std::int32_t>(unknowns.vertex.size());
-  if (count == 0) return {{}, "metis"};
-  // The upper triangle's pattern (with the diagonal), column by column, as cholmod_metis reads a
-  // symmetric matrix.
+  if (count == 0) return {{}, method};
   Cholmod cholmod;
   std::size_t entries = static_cast<std::size_t>(count);
   for (const auto v : unknowns.vertex)
@@ -377,12 +380,28 @@ EliminationOrder metis_elimination_order(const VertexRings& rings, const std::ve
   }
   column_start[count] = static_cast<int>(next);
   std::vector<int> permutation(static_cast<std::size_t>(count));
-  const int ok = cholmod_metis(upper, nullptr, 0, /*postorder=*/1, permutation.data(), &cholmod.common);
+  const int ok = ordering(upper, permutation.data(), &cholmod.common);
   cholmod_free_sparse(&upper, &cholmod.common);
   if (!ok || cholmod.common.status != CHOLMOD_OK) return geometric_elimination_order(rings, positions, always_fixed);
-  EliminationOrder order{std::vector<std::int32_t>(static_cast<std::size_t>(count)), "metis"};
+  EliminationOrder order{std::vector<std::int32_t>(static_cast<std::size_t>(count)), method};
   for (std::int32_t k = 0; k < count; ++k) order.vertices[k] = unknowns.vertex[permutation[k]];
   return order;
+}
+
+}  // namespace
+
+EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                         const std::vector<char>& always_fixed) {
+  return cholmod_elimination_order(rings, positions, always_fixed, "metis", [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
+    return cholmod_metis(upper, nullptr, 0, /*postorder=*/1, permutation, common);
+  });
+}
+
+EliminationOrder amd_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                       const std::vector<char>& always_fixed) {
+  return cholmod_elimination_order(rings, positions, always_fixed, "amd", [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
+    return cholmod_amd(upper, nullptr, 0, permutation, common);
+  });
 }
 
 ReusableCholesky::ReusableCholesky(const VertexRings& rings, const std::vector<Vec3>& positions,

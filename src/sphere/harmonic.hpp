@@ -47,7 +47,7 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
 /// of a map (z and φ of the plain map, every re-weighting round), whatever else they fix.
 struct EliminationOrder {
   std::vector<std::int32_t> vertices;
-  std::string method;  // "geometric" or "metis"
+  std::string method;  // "geometric", "amd" or "metis"
 };
 
 /// Geometric nested dissection: split at the median of the longest bounding-box axis, the vertices of
@@ -64,6 +64,14 @@ EliminationOrder geometric_elimination_order(const VertexRings& rings, const std
 /// Deterministic (METIS's fixed seed). Returns the geometric order if METIS fails (e.g. out of memory).
 EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                          const std::vector<char>& always_fixed);
+
+/// Approximate minimum degree (CHOLMOD's AMD): between the two on molecular surfaces of 10-70k vertices
+/// (2-4x the flops of METIS's order, 2-6x fewer than the geometric one's) at a fifth of METIS's cost
+/// (about 1.5-2 µs per vertex): the cheapest for a map that factorizes only twice there. Poor on large
+/// smooth meshes (a subdivided cube: 5x the geometric order's flops). Deterministic. Returns the
+/// geometric order if AMD fails.
+EliminationOrder amd_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                       const std::vector<char>& always_fixed);
 
 /// A sparse Cholesky factorization that is analysed once and refactorized for new weights: the
 /// re-weighting rounds solve systems with one sparsity pattern (every vertex that is not always fixed),
