@@ -90,7 +90,7 @@ void BM_MapMolecular(benchmark::State& state) {
 }
 
 // One numeric factorization of the uniform-weight system of a molecular surface (poles: the farthest
-// pair, fixed with their rings), in the geometric order (order 0) or METIS's (1):
+// pair, fixed with their rings), in the geometric order (order 0), METIS's (1) or AMD's (2):
 // BM_Factorize/structure/grid/order. The order's own time is a counter (computed once).
 void BM_Factorize(benchmark::State& state) {
   const auto* mesh = molecular_surface(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
@@ -108,8 +108,9 @@ void BM_Factorize(benchmark::State& state) {
     for (const auto v : rings.ring(pole)) fixed[v] = 1;
   }
   const auto start = std::chrono::steady_clock::now();
-  const auto order = state.range(2) == 1 ? detail::metis_elimination_order(rings, mesh->positions, fixed)
-                                         : detail::geometric_elimination_order(rings, mesh->positions, fixed);
+  const auto order = state.range(2) == 1   ? detail::metis_elimination_order(rings, mesh->positions, fixed)
+                    : state.range(2) == 2 ? detail::amd_elimination_order(rings, mesh->positions, fixed)
+                                          : detail::geometric_elimination_order(rings, mesh->positions, fixed);
   const double order_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   detail::ReusableCholesky factor(rings, order);
   const detail::EdgeWeights weights{std::vector<double>(rings.neighbors.size(), 1.0), true, 0};
@@ -118,11 +119,11 @@ void BM_Factorize(benchmark::State& state) {
   state.counters["vertices"] = n;
   state.counters["flops"] = factor.flops();
   state.counters["order_seconds"] = order_seconds;
-  state.SetLabel(std::string(kStructures[state.range(0)]) + (state.range(2) == 1 ? " metis" : " geometric"));
+  state.SetLabel(std::string(kStructures[state.range(0)]) + " " + order.method);
 }
 
 BENCHMARK(BM_MapMolecular)->Args({0, 50})->Args({1, 50})->Args({2, 100})->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
-BENCHMARK(BM_Factorize)->ArgsProduct({{0, 1}, {50}, {0, 1}})->Args({2, 100, 0})->Args({2, 100, 1})->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_Factorize)->ArgsProduct({{0, 1}, {50}, {0, 1, 2}})->Args({2, 100, 0})->Args({2, 100, 1})->Args({2, 100, 2})->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_MapDirect)->Arg(41)->Arg(129)->Arg(337)->Arg(408)->Arg(500)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_MapGaussSeidel)->Arg(41)->Arg(129)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
 

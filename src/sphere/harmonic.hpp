@@ -51,27 +51,26 @@ struct EliminationOrder {
 };
 
 /// Geometric nested dissection: split at the median of the longest bounding-box axis, the vertices of
-/// one half touching the other as separator, recursively. Cheap (a few ms per 10k vertices) and as good
-/// as METIS on smooth, convex-ish shapes (a subdivided cube), but a plane cuts a convoluted surface
-/// along long curves: on molecular surfaces its factor needs 4-13x the flops of METIS's.
+/// one half touching the other as separator, recursively. Cheap (a few ms per 10k vertices) and the best
+/// on smooth, convex-ish shapes (a subdivided cube), but a plane cuts a convoluted surface along long
+/// curves: on molecular surfaces its factor needs 5-24x the flops of AMD's or METIS's.
 /// Preconditions: always_fixed.size() == positions.size() == rings.vertex_count().
 EliminationOrder geometric_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                              const std::vector<char>& always_fixed);
 
-/// METIS's nested dissection (METIS_NodeND through CHOLMOD), postordered: the fewest flops on every mesh
-/// measured, but about 4-7 µs per vertex to compute (0.36-0.51 s for 78k vertices on the project's AMD EPYC
-/// machine), so worth it when the geometric order is poor or many factorizations follow.
-/// Deterministic (METIS's fixed seed). Returns the geometric order if METIS fails (e.g. out of memory).
-EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
-                                         const std::vector<char>& always_fixed);
-
-/// Approximate minimum degree (CHOLMOD's AMD): between the two on molecular surfaces of 10-70k vertices
-/// (2-4x the flops of METIS's order, 2-6x fewer than the geometric one's) at a fifth of METIS's cost
-/// (about 1.5-2 µs per vertex): the cheapest for a map that factorizes only twice there. Poor on large
-/// smooth meshes (a subdivided cube: 5x the geometric order's flops). Deterministic. Returns the
-/// geometric order if AMD fails.
+/// Approximate minimum degree (CHOLMOD's AMD on the symmetric pattern): about as cheap to compute as the
+/// geometric order (0.05 s for 78k vertices, 0.8 s for 480k on the project's AMD EPYC machine) and within
+/// 1.2-1.8x of METIS's flops on molecular surfaces, with factorizations as fast; 1.7x the geometric
+/// order's flops on a subdivided cube. Deterministic. Returns the geometric order if AMD fails.
 EliminationOrder amd_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                        const std::vector<char>& always_fixed);
+
+/// METIS's nested dissection (METIS_NodeND through CHOLMOD), postordered: the fewest flops on every mesh
+/// measured, but 4-7 µs per vertex to compute (0.48 s for 78k vertices, 2.9 s for 480k), which its
+/// factorizations did not win back against AMD's on any molecular surface measured; kept for the
+/// benchmarks and tests. Deterministic (METIS's fixed seed). Returns the geometric order if METIS fails.
+EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
+                                         const std::vector<char>& always_fixed);
 
 /// A sparse Cholesky factorization that is analysed once and refactorized for new weights: the
 /// re-weighting rounds solve systems with one sparsity pattern (every vertex that is not always fixed),

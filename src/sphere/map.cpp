@@ -68,28 +68,18 @@ constexpr int kEqualizingPatience = 2;
 constexpr double kEqualizingMinGain = 0.02;
 constexpr int kEqualizingMinRounds = 3;  // before that, a small gain may precede large ones (ajc_beast)
 
-// Fill-reducing orders (harmonic.hpp). The geometric nested dissection is nearly free and as good as
-// METIS's on smooth shapes (a subdivided cube: the same flops), but a plane cuts a molecular surface
-// along long curves. Judged by fl / n^1.5 of the geometric order (a good nested dissection of a surface
-// mesh needs O(n^1.5) flops): measured 27-44 on most of ../shared/data/meshes and the cube, 57-96 on
-// bumpy and many-limbed ones, 37-53 on molecular surfaces of 1-10k vertices and 78-96 on larger ones
-// (2src, 4hhb, 5hr7), where METIS's order needs 4-13x fewer flops (its own ratio: 7-31 on all of them).
-// METIS's order costs about 4.5 µs per vertex (AMD EPYC, 2026-11-25). The plain map factorizes twice:
-// METIS pays there only on large, convoluted surfaces (5hr7, 78k vertices: two factorizations of 0.46 s
-// against 0.36 s of ordering plus two of 0.11 s; 31-37k-vertex molecular surfaces mapped without
-// re-weighting took 0.07-0.19 s longer with it). Re-weighting factorizes once per round, so it takes
-// METIS's order (see reweight_against_collapse for when) unless the geometric one is fairly good or the
-// mesh is small: on the smooth shapes (ratio 37-44: ajc_horse, libigl_armadillo, pmp_bunny) METIS's 2-6x
-// fewer flops saved less time per round than its ordering cost over their 5-8 rounds (factorizations of
-// 50k vertices are dominated by per-supernode overhead, not flops).
-constexpr double kMetisForPlainMap = 60;
-constexpr std::size_t kMetisForPlainMapVertices = 50000;
-// Below that size, or short of that ratio, CHOLMOD's AMD: it costs a fifth of METIS's order and gave the
-// plain map's two factorizations in the least time on molecular surfaces of 10-70k vertices.
-constexpr double kAmdForPlainMap = 45;
-constexpr std::size_t kAmdForPlainMapVertices = 5000;
-constexpr double kMetisForReweighting = 45;
-constexpr std::size_t kMetisForReweightingVertices = 10000;
+// Fill-reducing orders (harmonic.hpp). The geometric nested dissection is nearly free and the best on
+// smooth, convex-ish shapes (a subdivided cube), but a plane cuts a molecular surface along long curves.
+// Judged by fl / n^1.5 of its factor (a good nested dissection of a surface mesh needs O(n^1.5) flops):
+// measured 27-44 on most of ../shared/data/meshes and 35 on the cube, 57-96 on bumpy and many-limbed
+// ones, 40-96 on molecular surfaces. CHOLMOD's AMD costs about as little to compute (0.05 s at 78k
+// vertices) and gives 2-12x fewer flops than the geometric order wherever that ratio exceeds 38 (on the
+// cube 1.7x more; METIS's nested dissection, 5-10x dearer to compute, saved no time over AMD on any
+// molecular surface measured: BENCHMARKS.md). So where the ratio exceeds kTryAmd on a mesh of
+// kTryAmdVertices or more, AMD's order is analysed too and the one with fewer flops serves every
+// factorization of the map; below that size a factorization takes milliseconds in any order.
+constexpr double kTryAmd = 38;
+constexpr std::size_t kTryAmdVertices = 5000;
 
 class StageTimer {
  public:
@@ -388,13 +378,12 @@ struct ReweightingOutcome {
   std::optional<Finished> finished;  // the best round finished (superposed, untangled, certified), if tried
 };
 
-// The fill-reducing order for the Cholesky factorizations of one map: METIS's when it is worth it, else
-// the geometric one (computed afresh for each analysis: it is nearly free).
+// The fill-reducing order for the Cholesky factorizations of one map: AMD's when it needs fewer flops,
+// else the geometric one (computed afresh for each analysis: it is nearly free).
 struct OrderChoice {
-  std::vector<char> always_fixed;           // poles and rings: fixed in every system of the map
-  std::optional<detail::EliminationOrder> chosen;  // AMD's or METIS's, when the geometric one is poor
-  double geometric_flops_ratio = 0;         // fl / n^1.5 of the plain map's geometric order (0: not known)
-  [[nodiscard]] bool metis() const { return chosen && chosen->method == "metis"; }
+  std::vector<char> always_fixed;                  // poles and rings: fixed in every system of the map
+  std::optional<detail::EliminationOrder> chosen;  // when not the geometric order
+  bool used = false;                               // a Cholesky factorization was made
 };
 
 std::unique_ptr<detail::ReusableCholesky> make_factor(const WorkingMesh& work, const OrderChoice& order,
@@ -419,13 +408,6 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   // The sparsity pattern is the same in every round: one ordering and symbolic analysis (again only
   // if the kept meridian changes), one numeric factorization per round for both z and φ.
   const bool reuse = options.solver == Solver::kDirect && base.symmetric;
-  const bool metis_worth_it = order.geometric_flops_ratio > kMetisForReweighting && work.positions.size() >= kMetisForReweightingVertices;
-  // With equalizing rounds to come (up to 12 more factorizations) METIS's order is taken at once;
-  // without them most maps need one or two rounds, so the third factorization is the first in its order
-  // (measured on 45k vertices: 0.27-0.30 s per round in the geometric order, 0.08-0.09 s in METIS's; on
-  // 22k, 0.1 s of ordering for a round or two saves less than that).
-  const int geometric_factorizations = options.max_equalizing_rounds > 0 ? 0 : 2;
-  int factorizations = 0;
   std::unique_ptr<detail::ReusableCholesky> factor;
 
   std::vector<double> log_gain(count, 0.0), proposal(count), signal(count), smoothed(count);
@@ -462,10 +444,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
       }
     }
     if (reuse) {
-      if (!order.metis() && metis_worth_it && ++factorizations > geometric_factorizations) {
-        order.chosen = detail::metis_elimination_order(work.rings, work.positions, order.always_fixed);
-        factor.reset();
-      }
+      order.used = true;
       const auto& meridian = outcome.best.planar.meridian;
       const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
       if (!factor || factor->last() != interior) factor = make_factor(work, order, interior);
@@ -683,14 +662,13 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     std::unique_ptr<detail::ReusableCholesky> plain_factor;
     if (options.solver == Solver::kDirect && weights.symmetric) {
       plain_factor = make_factor(work, order);
+      order.used = true;
       const double vertices = static_cast<double>(work.positions.size());
-      order.geometric_flops_ratio = plain_factor->flops() / (vertices * std::sqrt(vertices));
-      const auto vertex_count = work.positions.size();
-      if (order.geometric_flops_ratio > kMetisForPlainMap && vertex_count >= kMetisForPlainMapVertices)
-        order.chosen = detail::metis_elimination_order(work.rings, work.positions, order.always_fixed);
-      else if (order.geometric_flops_ratio > kAmdForPlainMap && vertex_count >= kAmdForPlainMapVertices)
-        order.chosen = detail::amd_elimination_order(work.rings, work.positions, order.always_fixed);
-      if (order.chosen) plain_factor = make_factor(work, order);
+      if (plain_factor->flops() > kTryAmd * vertices * std::sqrt(vertices) && work.positions.size() >= kTryAmdVertices) {
+        auto amd = detail::amd_elimination_order(work.rings, work.positions, order.always_fixed);
+        auto amd_factor = std::make_unique<detail::ReusableCholesky>(work.rings, amd);
+        if (amd_factor->flops() < plain_factor->flops()) order.chosen = std::move(amd), plain_factor = std::move(amd_factor);
+      }
     }
     planar = solve_planar(work, north, south, weights, options, plain_factor.get());
     plain_factor.reset();
@@ -721,7 +699,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     timer.lap("reweight");
   }
   if (!finished) finished = finish_map(mesh, input_rings, std::move(sphere), options, &timer);
-  if (order.geometric_flops_ratio > 0) result.elimination_order = order.chosen ? order.chosen->method : "geometric";
+  if (order.used) result.elimination_order = order.chosen ? order.chosen->method : "geometric";
   result.superposition = finished->superposition;
   result.untangling_moves = finished->untangling_moves;
   result.certificate = std::move(finished->certificate);
