@@ -477,7 +477,8 @@ void ReusableCholesky::analyse(const VertexRings& rings, std::vector<std::int32_
   column_start[unknowns] = static_cast<int>(next);
   // CHOLMOD postorders the elimination tree by default, which can move `last` away from the end (the
   // fill is the same either way). METIS's orders come postordered by cholmod_metis (without that, their
-  // factorizations took 3x as long on a 78k-vertex molecular surface); the geometric one is left as it is
+  // factorizations took 3x as long on a 78k-vertex molecular surface), AMD's by AMD itself (it ends with
+  // a postorder of its assembly tree); the geometric one is left as it is
   // (CHOLMOD's postorder made it faster there but slower on a subdivided cube).
   s.cholmod.common.postorder = false;
   s.cholmod.factor = cholmod_analyze(s.lower, &s.cholmod.common);
