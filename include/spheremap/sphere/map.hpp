@@ -82,8 +82,8 @@ struct SphereMap {
   int meridian_round = 0;
 
   std::string solver_used;  // e.g. "cholmod-llt", "umfpack-lu", "gauss-seidel"
-  /// Fill-reducing order of the Cholesky factorizations: "geometric" (our nested dissection) or "metis"
-  /// (where the geometric one needs far more flops, as on molecular surfaces); empty without them.
+  /// Fill-reducing order of the Cholesky factorizations: "geometric" (our nested dissection) or "amd"
+  /// (CHOLMOD's AMD, where it needs fewer flops, as on molecular surfaces); empty without them.
   std::string elimination_order;
   std::int64_t gauss_seidel_sweeps = 0;
   bool gauss_seidel_converged = true;
