@@ -1,5 +1,5 @@
 // Map + certify on generated meshes (issue: the mapping engine) and on molecular surfaces, and the sparse
-// Cholesky factorization in either fill-reducing order. Run with
+// Cholesky factorization in each fill-reducing order. Run with
 //   ./build/map_bench --benchmark_filter=... (see BENCHMARKS.md for the exact commands and results)
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
@@ -85,8 +85,7 @@ void BM_MapMolecular(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(mesh->vertex_count());
   state.counters["certified"] = map.certificate.certified() ? 1 : 0;
   state.counters["rounds"] = map.reweighting_rounds;
-  state.counters["metis_order"] = map.elimination_order == "metis" ? 1 : 0;
-  state.SetLabel(kStructures[state.range(0)]);
+  state.SetLabel(std::string(kStructures[state.range(0)]) + " " + map.elimination_order);
 }
 
 // One numeric factorization of the uniform-weight system of a molecular surface (poles: the farthest

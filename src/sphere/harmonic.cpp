@@ -238,7 +238,8 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
   const Eigen::SparseMatrix<double> matrix = problem_matrix(problem, unknown_index, unknowns);
   // Fill-reducing order of our own (geometric nested dissection): CHOLMOD's default search tries
   // several orderings (27 s for one 100k-vertex factorization measured here) and plain AMD fills 2-4x
-  // more on surface meshes. The lower triangle is written column by column in that order, directly in
+  // more on smooth surface meshes (on molecular surfaces it fills less: map_to_sphere chooses between the
+  // two through ReusableCholesky, which this one-off solve does not). The lower triangle is written column by column in that order, directly in
   // CHOLMOD's format, and factorized in natural order.
   const auto order = nested_dissection_order(matrix, unknown_positions);  // order[k]: unknown at row k
   std::vector<std::int32_t> row_of(static_cast<std::size_t>(unknowns));
@@ -582,10 +583,9 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
   if (solver == Solver::kGaussSeidel) return solve_gauss_seidel(problem, x, tolerance, max_sweeps);
   SolveStats stats;
   const auto n = problem.rings->vertex_count();
-  std::vector<std::int32_t> unknown_index(n, -1);
-  std::int32_t unknowns = 0;
-  for (std::int32_t v = 0; v < n; ++v)
-    if (!problem.fixed[v]) unknown_index[v] = unknowns++;
+  const auto numbered = number_unknowns(n, problem.fixed);
+  const auto& unknown_index = numbered.index;
+  const auto unknowns = static_cast<std::int32_t>(numbered.vertex.size());
   if (unknowns == 0) {
     stats.solver = "none";
     return stats;

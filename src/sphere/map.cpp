@@ -383,7 +383,6 @@ struct ReweightingOutcome {
 struct OrderChoice {
   std::vector<char> always_fixed;                  // poles and rings: fixed in every system of the map
   std::optional<detail::EliminationOrder> chosen;  // when not the geometric order
-  bool used = false;                               // a Cholesky factorization was made
 };
 
 std::unique_ptr<detail::ReusableCholesky> make_factor(const WorkingMesh& work, const OrderChoice& order,
@@ -444,7 +443,6 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
       }
     }
     if (reuse) {
-      order.used = true;
       const auto& meridian = outcome.best.planar.meridian;
       const std::vector<std::int32_t> interior(meridian.begin() + 1, meridian.end() - 1);
       if (!factor || factor->last() != interior) factor = make_factor(work, order, interior);
@@ -662,13 +660,14 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     std::unique_ptr<detail::ReusableCholesky> plain_factor;
     if (options.solver == Solver::kDirect && weights.symmetric) {
       plain_factor = make_factor(work, order);
-      order.used = true;
       const double vertices = static_cast<double>(work.positions.size());
       if (plain_factor->flops() > kTryAmd * vertices * std::sqrt(vertices) && work.positions.size() >= kTryAmdVertices) {
         auto amd = detail::amd_elimination_order(work.rings, work.positions, order.always_fixed);
         auto amd_factor = std::make_unique<detail::ReusableCholesky>(work.rings, amd);
         if (amd_factor->flops() < plain_factor->flops()) order.chosen = std::move(amd), plain_factor = std::move(amd_factor);
       }
+      // Re-weighting factorizes in the same order (its systems have the same unknowns).
+      result.elimination_order = order.chosen ? order.chosen->method : "geometric";
     }
     planar = solve_planar(work, north, south, weights, options, plain_factor.get());
     plain_factor.reset();
@@ -699,7 +698,6 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     timer.lap("reweight");
   }
   if (!finished) finished = finish_map(mesh, input_rings, std::move(sphere), options, &timer);
-  if (order.used) result.elimination_order = order.chosen ? order.chosen->method : "geometric";
   result.superposition = finished->superposition;
   result.untangling_moves = finished->untangling_moves;
   result.certificate = std::move(finished->certificate);
