@@ -12,39 +12,46 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // One line: d[q] = min_p (q - p)² + f[p], by the lower envelope of the parabolas rooted at each p.
-// Envelope entry k: parabola v[k], with f[v[k]] + v[k]² in rooted[k], lowest from z[k] on. The
-// intersection that ends the popping is the new entry's z: one division per comparison, not two.
+// Envelope entry k: parabola v[k], with f[v[k]] + v[k]² in rooted[k], lowest from z[k] on, where z[k]
+// (k > 0) is the fraction numerator[k] / denominator[k] (denominator > 0) and z[0] is -infinity.
+// Comparisons cross-multiply instead of dividing: the division's latency sat on the loop's critical
+// path. The inputs are integers (squared distances), so the products are exact (below 2^53 for lines
+// shorter than 2^15) and every comparison decides exactly as the exact fractions do; so did the
+// divisions, whose correctly rounded quotients of such fractions never tie unless the fractions do.
 // Zeros inside a run of zeros are left out: every sample outside the run is nearer to an end of it,
 // and the run's own samples are 0 (which is what the envelope gives them, the transform being exact).
-void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& z,
-                    std::vector<double>& rooted) {
+void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& numerator,
+                    std::vector<double>& denominator, std::vector<double>& rooted) {
   v.resize(static_cast<std::size_t>(n));
-  z.resize(static_cast<std::size_t>(n) + 1);
+  numerator.resize(static_cast<std::size_t>(n));
+  denominator.resize(static_cast<std::size_t>(n));
   rooted.resize(static_cast<std::size_t>(n));
   std::int64_t k = -1;
   for (std::int64_t q = 0; q < n; ++q) {
     if (f[q] == kInfinity) continue;
     if (f[q] == 0 && q > 0 && q + 1 < n && f[q - 1] == 0 && f[q + 1] == 0) continue;
     const double here = f[q] + static_cast<double>(q * q);
-    double s = -kInfinity;
+    double num = 0, den = 1;  // where the new parabola meets entry k's
     while (k >= 0) {
-      s = (here - rooted[k]) / (2.0 * static_cast<double>(q - v[k]));
-      if (s > z[k]) break;
+      num = here - rooted[k];
+      den = 2.0 * static_cast<double>(q - v[k]);
+      if (k == 0 || num * denominator[k] > numerator[k] * den) break;
       --k;
     }
     ++k;
     v[k] = q;
     rooted[k] = here;
-    z[k] = k == 0 ? -kInfinity : s;
+    numerator[k] = num;
+    denominator[k] = den;
   }
   if (k < 0) {
     for (std::int64_t q = 0; q < n; ++q) d[q] = kInfinity;
     return;
   }
-  z[k + 1] = kInfinity;
   std::int64_t j = 0;
   for (std::int64_t q = 0; q < n; ++q) {
-    while (z[j + 1] < static_cast<double>(q)) ++j;
+    const auto at = static_cast<double>(q);
+    while (j < k && numerator[j + 1] < at * denominator[j + 1]) ++j;
     const double offset = static_cast<double>(q - v[j]);
     d[q] = f[q] == 0 ? 0.0 : offset * offset + f[v[j]];
   }
@@ -85,7 +92,8 @@ void binary_line(const double* f, double* d, std::int64_t n) {
 // nonzero value stay zero and only the nearest of each run can be anyone's nearest, so the transform
 // runs on what lies between them, which in a molecule's grid is often half the line or less.
 std::pair<std::int64_t, std::int64_t> transform_any_line(const double* in, double* out, std::int64_t n, std::vector<std::int64_t>& v,
-                                                         std::vector<double>& z, std::vector<double>& rooted) {
+                                                         std::vector<double>& numerator, std::vector<double>& denominator,
+                                                         std::vector<double>& rooted) {
   std::int64_t first = 0, end = n;
   while (first < n && in[first] == 0) ++first;
   if (first == n) return {0, 0};  // all zero
@@ -95,7 +103,7 @@ std::pair<std::int64_t, std::int64_t> transform_any_line(const double* in, doubl
   switch (kind_of(in + first, length)) {
     case LineKind::kTrivial: return {0, 0};
     case LineKind::kBinary: binary_line(in + first, out + first, length); break;
-    case LineKind::kGeneral: transform_line(in + first, out + first, length, v, z, rooted); break;
+    case LineKind::kGeneral: transform_line(in + first, out + first, length, v, numerator, denominator, rooted); break;
   }
   return {first, end};
 }
@@ -115,7 +123,7 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
   const std::int64_t plane = nx * ny;
   struct Scratch {
     std::vector<std::int64_t> v;
-    std::vector<double> z, rooted, in, out;
+    std::vector<double> numerator, denominator, rooted, in, out;
   };
   std::vector<Scratch> scratch(static_cast<std::size_t>(workers));
   const std::int64_t longest = std::max({nx, ny, nz});
@@ -127,7 +135,7 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
     for (std::int64_t j = 0; j < ny; ++j) {
       T* row = values + k * plane + j * nx;
       for (std::int64_t q = 0; q < nx; ++q) s.in[q] = static_cast<double>(row[q]);
-      const auto [first, end] = transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.z, s.rooted);
+      const auto [first, end] = transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.numerator, s.denominator, s.rooted);
       for (std::int64_t q = first; q < end; ++q) row[q] = static_cast<T>(s.out[q]);
     }
   });
@@ -142,7 +150,7 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
         for (std::int64_t q = 0; q < n; ++q)
           for (std::int64_t w = 0; w < width; ++w) s.in[w * n + q] = static_cast<double>(base[q * stride + w]);
         for (std::int64_t w = 0; w < width; ++w) {
-          const auto [first, end] = transform_any_line(s.in.data() + w * n, s.out.data(), n, s.v, s.z, s.rooted);
+          const auto [first, end] = transform_any_line(s.in.data() + w * n, s.out.data(), n, s.v, s.numerator, s.denominator, s.rooted);
           for (std::int64_t q = first; q < end; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
         }
       }
