@@ -121,6 +121,8 @@ class Contour {
     if (vertex_start[nz_] > std::numeric_limits<std::int32_t>::max())
       throw std::invalid_argument("contour_isosurface: more than 2^31 vertices; use a coarser grid");
     Mesh mesh;
+    detail::reserve_mapped(mesh.positions, static_cast<std::size_t>(vertex_start[nz_]), threads_);
+    detail::reserve_mapped(mesh.triangles, static_cast<std::size_t>(triangle_start[nz_]), threads_);
     mesh.positions.resize(static_cast<std::size_t>(vertex_start[nz_]));
     mesh.triangles.resize(static_cast<std::size_t>(triangle_start[nz_]));
     // Pass 2: positions and triangles, written at offsets known from pass 1, a slab of planes per chunk.

@@ -13,7 +13,6 @@
 #endif
 
 #include <fmt/format.h>
-#include <sys/mman.h>
 
 #include "atom_grid.hpp"
 #include "parallel.hpp"
@@ -1008,28 +1007,6 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
   });
 }
 
-// Reserves `count` elements and has the kernel map their pages from `threads` threads at once
-// (MADV_POPULATE_WRITE, Linux 5.14): a grid of hundreds of megabytes otherwise spends a tenth of a second
-// in page faults on the one thread that first writes it. Where the kernel lacks it, nothing happens and
-// the first write maps the pages as before.
-template <typename T>
-void allocate_in_parallel(std::vector<T>& values, std::size_t count, int threads) {
-  values.reserve(count);
-#if defined(MADV_POPULATE_WRITE)
-  const std::uintptr_t page = 4096, begin = reinterpret_cast<std::uintptr_t>(values.data());
-  const std::uintptr_t first = (begin + page - 1) / page * page, end = (begin + count * sizeof(T)) / page * page;
-  if (end <= first + page * 1024) return;  // small: not worth threads
-  const std::uintptr_t pages = (end - first) / page;
-  detail::parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
-    const std::uintptr_t from = first + page * (pages * static_cast<std::uintptr_t>(chunk) / static_cast<std::uintptr_t>(threads));
-    const std::uintptr_t to = first + page * (pages * static_cast<std::uintptr_t>(chunk + 1) / static_cast<std::uintptr_t>(threads));
-    if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
-  });
-#else
-  (void)threads;
-#endif
-}
-
 template <typename T>
 Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& options) {
   if (atoms.empty()) throw InputError("no atoms to build a surface from");
@@ -1061,7 +1038,7 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
   }
   const int threads = detail::surface_threads(options.threads);
   StageClock clock;
-  allocate_in_parallel(field.values, static_cast<std::size_t>(field.count()), threads);
+  detail::reserve_mapped(field.values, static_cast<std::size_t>(field.count()), threads);
   field.values.assign(static_cast<std::size_t>(field.count()), static_cast<T>(kUnreached));
   // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those a
   // probe reaches from outside count (as for MSMS's outer surface), unless cavities are carved too.
