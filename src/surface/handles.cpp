@@ -704,6 +704,9 @@ class MembraneMover {
   static constexpr std::uint8_t kNone = 0, kMaxFaces = 8, kFace = 254, kPending = 255;
   static constexpr std::int8_t kNoArc = -1, kTerminal = 14;
   static constexpr std::int64_t kSink = -2, kMaxBoxSamples = std::int64_t{1} << 22;
+  // Search trees of the maximum flow, and a node's parent when it has none (orphan or free) or is a root.
+  static constexpr std::uint8_t kFree = 0, kSourceTree = 1, kSinkTree = 2;
+  static constexpr std::int32_t kNoParent = -1, kRootParent = -2;
   [[nodiscard]] static bool is_side(std::uint8_t label) { return label != kNone && label <= kMaxFaces; }
 
   bool set_box(const std::vector<std::int64_t>& membrane) {
@@ -822,28 +825,189 @@ class MembraneMover {
     return 2 * t;
   }
 
-  bool levels() {
-    for (const auto b : region_) level_[static_cast<std::size_t>(2 * b)] = level_[static_cast<std::size_t>(2 * b + 1)] = -1;
-    sink_level_ = -1;
-    queue_.clear();
-    for (const auto b : sources_) level_[static_cast<std::size_t>(2 * b)] = 1, queue_.push_back(2 * b);
-    for (std::size_t head = 0; head < queue_.size(); ++head) {
-      const auto x = queue_[head];
-      const auto lx = level_[static_cast<std::size_t>(x)];
-      if (sink_level_ >= 0 && lx >= sink_level_) break;
-      for (int slot = 0; slot < arcs(x); ++slot) {
-        const auto y = target(x, slot);
-        if (y == -1) continue;
-        if (y == kSink) {
-          if (sink_level_ < 0) sink_level_ = lx + 1;
+  // Calls visit(q, slot) for every node q with a residual arc into node x (target(q, slot) == x).
+  template <typename Visit>
+  void residual_into(std::int64_t x, Visit&& visit) const {
+    const std::int64_t b = x >> 1;
+    const auto ub = static_cast<std::size_t>(b);
+    if ((x & 1) == 0) {
+      if (used_[ub]) visit(x + 1, 1);  // out of b -> into b (cancelling b's flow)
+      const auto lb = label_[ub];
+      for (int n = 0; n < 14; ++n) {  // out of each labelled neighbour -> into b (unbounded)
+        const std::int64_t t = b + offset_[n];
+        const auto lt = label_[static_cast<std::size_t>(t)];
+        if (lt == kNone || lt == kPending || (is_side(lb) && is_side(lt) && lb != lt)) continue;
+        visit(2 * t + 1, 2 + (n ^ 1));
+      }
+      return;
+    }
+    if (!used_[ub]) visit(x - 1, 0);  // into b -> out of b
+    const auto n = next_[ub];
+    if (n >= 0 && n < kTerminal) visit(2 * (b + offset_[n]), 1);  // into t -> out of b (cancelling b's flow to t)
+  }
+
+  // The depth of node x in its search tree (a root is 1) if its parents still lead to a terminal, else
+  // -1 (an orphan on the way). The nodes walked are stamped with `time` and their depths.
+  std::int32_t rooted_depth(std::int64_t x, std::int32_t time) {
+    std::int32_t depth = 0;
+    for (std::int64_t u = x;; u = parent_[static_cast<std::size_t>(u)]) {
+      const auto uu = static_cast<std::size_t>(u);
+      if (stamp_[uu] == time) {
+        depth += depth_[uu];
+        break;
+      }
+      if (parent_[uu] == kNoParent) return -1;
+      ++depth;
+      if (parent_[uu] == kRootParent) break;
+    }
+    std::int32_t at = depth;
+    for (std::int64_t u = x; stamp_[static_cast<std::size_t>(u)] != time; u = parent_[static_cast<std::size_t>(u)]) {
+      stamp_[static_cast<std::size_t>(u)] = time;
+      depth_[static_cast<std::size_t>(u)] = at--;
+      if (parent_[static_cast<std::size_t>(u)] == kRootParent) break;
+    }
+    return depth;
+  }
+
+  // The maximum flow from the terminals of source_side_ to those of the other sides, or `limit` as soon
+  // as it reaches it; the flow is left in used_, next_ and previous_. Boykov & Kolmogorov's algorithm
+  // (2004): a search tree grows from the sources and one from the sinks; where they touch, one unit
+  // goes through; the nodes cut off by the saturated arcs (orphans) find new parents in their tree or
+  // are freed. The trees are kept from one path to the next, where Dinic's phases searched the whole
+  // region afresh (82 phases over 90k samples for one membrane of 5hr7 at 0.25 Å). Any maximum flow
+  // leaves the same samples reachable from the sources, so the cut does not depend on the algorithm.
+  std::int64_t maximum_flow(std::int64_t limit) {
+    const auto nodes = static_cast<std::size_t>(2 * count_);
+    tree_.assign(nodes, kFree);
+    parent_.assign(nodes, kNoParent);
+    parent_slot_.assign(nodes, 0);
+    stamp_.assign(nodes, 0);
+    depth_.assign(nodes, 0);
+    is_active_.assign(nodes, 0);
+    active_.clear();
+    std::size_t head = 0;
+    auto activate = [&](std::int64_t x) {
+      if (is_active_[static_cast<std::size_t>(x)]) return;
+      is_active_[static_cast<std::size_t>(x)] = 1;
+      active_.push_back(x);
+    };
+    auto join = [&](std::int64_t x, std::uint8_t tree, std::int64_t parent, int slot) {
+      const auto ux = static_cast<std::size_t>(x);
+      tree_[ux] = tree;
+      parent_[ux] = static_cast<std::int32_t>(parent);
+      parent_slot_[ux] = static_cast<std::uint8_t>(slot);
+      if (parent >= 0) stamp_[ux] = stamp_[static_cast<std::size_t>(parent)], depth_[ux] = depth_[static_cast<std::size_t>(parent)] + 1;
+      else depth_[ux] = 1;
+      activate(x);
+    };
+    for (const auto b : region_) {
+      const auto side = terminal_[static_cast<std::size_t>(b)];
+      if (side == source_side_) join(2 * b, kSourceTree, kRootParent, 0);
+      else if (side != 0) join(2 * b + 1, kSinkTree, kRootParent, 0);
+    }
+    std::int64_t flow = 0;
+    std::int32_t time = 0;
+    for (;;) {
+      // Grow the trees until they touch: target(from, via) == to, from in the source tree, to in the sink tree.
+      std::int64_t from = -1, to = -1;
+      int via = 0;
+      while (head < active_.size() && from < 0) {
+        const std::int64_t x = active_[head];
+        const auto tree = tree_[static_cast<std::size_t>(x)];
+        if (tree == kSourceTree) {
+          for (int slot = 0; slot < arcs(x) && from < 0; ++slot) {
+            const std::int64_t y = target(x, slot);
+            if (y < 0) continue;  // none, or the sink (whose nodes root the sink tree for good)
+            const auto other = tree_[static_cast<std::size_t>(y)];
+            if (other == kFree) join(y, kSourceTree, x, slot);
+            else if (other == kSinkTree) from = x, via = slot, to = y;
+          }
+        } else if (tree == kSinkTree) {
+          residual_into(x, [&](std::int64_t q, int slot) {
+            if (from >= 0) return;
+            const auto other = tree_[static_cast<std::size_t>(q)];
+            if (other == kFree) join(q, kSinkTree, x, slot);
+            else if (other == kSourceTree) from = q, via = slot, to = x;
+          });
+        }
+        if (from < 0) is_active_[static_cast<std::size_t>(x)] = 0, ++head;  // done with x (it stays first if it touched)
+      }
+      if (from < 0) return flow;
+      if (head > 4096 && head * 2 > active_.size()) active_.erase(active_.begin(), active_.begin() + static_cast<std::ptrdiff_t>(head)), head = 0;
+      // The path: the source tree's branch to `from`, the arc, the sink tree's branch from `to`, the sink.
+      path_.clear();
+      slots_.clear();
+      for (std::int64_t x = from;; x = parent_[static_cast<std::size_t>(x)]) {
+        path_.push_back(x);
+        if (parent_[static_cast<std::size_t>(x)] == kRootParent) break;
+        slots_.push_back(parent_slot_[static_cast<std::size_t>(x)]);
+      }
+      std::reverse(path_.begin(), path_.end());
+      std::reverse(slots_.begin(), slots_.end());
+      slots_.push_back(via);
+      for (std::int64_t x = to;; x = parent_[static_cast<std::size_t>(x)]) {
+        path_.push_back(x);
+        slots_.push_back(parent_[static_cast<std::size_t>(x)] == kRootParent ? 0 : parent_slot_[static_cast<std::size_t>(x)]);
+        if (parent_[static_cast<std::size_t>(x)] == kRootParent) break;
+      }
+      path_.push_back(kSink);
+      augment();
+      if (++flow >= limit) return flow;
+      // Every unit arc of the path is now saturated (the unbounded ones never are): the child across each
+      // one in either tree becomes an orphan.
+      ++time;
+      orphans_.clear();
+      for (std::size_t k = 0; k + 2 < path_.size(); ++k) {
+        const std::int64_t x = path_[k], y = path_[k + 1];
+        if ((x & 1) == 1 && slots_[k] != 1) continue;  // out of a sample into a neighbour (unbounded)
+        const auto ux = static_cast<std::size_t>(x), uy = static_cast<std::size_t>(y);
+        if (tree_[ux] == kSourceTree && tree_[uy] == kSourceTree && parent_[uy] == x) parent_[uy] = kNoParent, orphans_.push_back(y);
+        else if (tree_[ux] == kSinkTree && tree_[uy] == kSinkTree && parent_[ux] == y) parent_[ux] = kNoParent, orphans_.push_back(x);
+      }
+      while (!orphans_.empty()) {
+        const std::int64_t o = orphans_.back();
+        orphans_.pop_back();
+        const auto uo = static_cast<std::size_t>(o);
+        std::int64_t best = -1;
+        int best_slot = 0;
+        std::int32_t best_depth = std::numeric_limits<std::int32_t>::max();
+        auto consider = [&](std::int64_t q, int slot) {
+          if (tree_[static_cast<std::size_t>(q)] != tree_[uo]) return;
+          const std::int32_t d = rooted_depth(q, time);
+          if (d >= 0 && d < best_depth) best = q, best_slot = slot, best_depth = d;
+        };
+        if (tree_[uo] == kSourceTree) residual_into(o, consider);
+        else
+          for (int slot = 0; slot < arcs(o); ++slot)
+            if (const std::int64_t y = target(o, slot); y >= 0) consider(y, slot);
+        if (best >= 0) {
+          parent_[uo] = static_cast<std::int32_t>(best);
+          parent_slot_[uo] = static_cast<std::uint8_t>(best_slot);
+          stamp_[uo] = time;
+          depth_[uo] = best_depth + 1;
           continue;
         }
-        if (level_[static_cast<std::size_t>(y)] >= 0) continue;
-        level_[static_cast<std::size_t>(y)] = lx + 1;
-        queue_.push_back(y);
+        // No parent: o leaves its tree; its neighbours in the tree that could reach it are searched again,
+        // and its children are orphans too.
+        const auto tree = tree_[uo];
+        tree_[uo] = kFree;
+        auto requeue = [&](std::int64_t q) {
+          const auto uq = static_cast<std::size_t>(q);
+          if (tree_[uq] != tree) return;
+          activate(q);
+          if (parent_[uq] == o) parent_[uq] = kNoParent, orphans_.push_back(q);
+        };
+        if (tree == kSourceTree) {
+          residual_into(o, [&](std::int64_t q, int) { requeue(q); });
+          for (int slot = 0; slot < arcs(o); ++slot)
+            if (const std::int64_t y = target(o, slot); y >= 0) requeue(y);
+        } else {
+          for (int slot = 0; slot < arcs(o); ++slot)
+            if (const std::int64_t y = target(o, slot); y >= 0) requeue(y);
+          residual_into(o, [&](std::int64_t q, int) { requeue(q); });
+        }
       }
     }
-    return sink_level_ >= 0;
   }
 
   // Pushes one unit along the path: flags first cleared (cancelled flow), then set (new flow), so that a
@@ -874,9 +1038,8 @@ class MembraneMover {
     }
   }
 
-  // Dinic's blocking flows on the implicit graph from the terminals of `side` to those of the other
-  // sides, stopped as soon as the flow reaches `limit`. Returns the cut's samples (sorted global
-  // indices) if the flow stayed below the limit, else empty.
+  // The minimum vertex cut between the terminals of `side` and those of the other sides, unless it
+  // has `limit` samples or more. Returns the cut's samples (sorted global indices), else empty.
   std::vector<std::int64_t> minimum_cut(int side, std::int64_t limit) {
     source_side_ = static_cast<std::uint8_t>(side);
     sources_.clear();
@@ -886,45 +1049,7 @@ class MembraneMover {
     used_.assign(n, 0);
     next_.assign(n, kNoArc);
     previous_.assign(n, kNoArc);
-    level_.assign(2 * n, -1);
-    current_.assign(2 * n, 0);
-    std::int64_t flow = 0;
-    while (flow < limit && levels()) {
-      for (const auto b : region_) current_[static_cast<std::size_t>(2 * b)] = current_[static_cast<std::size_t>(2 * b + 1)] = 0;
-      for (const auto source : sources_) {
-        while (flow < limit && level_[static_cast<std::size_t>(2 * source)] == 1) {
-          path_.assign(1, 2 * source);
-          slots_.clear();
-          bool found = false;
-          while (!path_.empty()) {
-            const auto x = path_.back();
-            if (x == kSink) {
-              found = true;
-              break;
-            }
-            const auto ux = static_cast<std::size_t>(x);
-            bool advanced = false;
-            for (; current_[ux] < arcs(x); ++current_[ux]) {
-              const auto y = target(x, current_[ux]);
-              if (y == -1) continue;
-              const auto ly = y == kSink ? sink_level_ : level_[static_cast<std::size_t>(y)];
-              if (ly != level_[ux] + 1) continue;
-              slots_.push_back(current_[ux]);
-              path_.push_back(y);
-              advanced = true;
-              break;
-            }
-            if (advanced) continue;
-            level_[ux] = -1;  // a dead end for the rest of this phase
-            path_.pop_back();
-            if (!path_.empty()) slots_.pop_back(), ++current_[static_cast<std::size_t>(path_.back())];
-          }
-          if (!found) break;
-          augment();
-          ++flow;
-        }
-      }
-    }
+    const std::int64_t flow = maximum_flow(limit);
     if (flow >= limit) return {};
     // The cut: samples whose "into" node the source still reaches in the residual graph, but not their "out of".
     std::vector<std::uint8_t> reached(2 * n, 0);
@@ -958,10 +1083,9 @@ class MembraneMover {
   std::uint8_t source_side_ = 1;
   std::vector<std::uint16_t> distance_;
   std::vector<std::int8_t> next_, previous_;
-  std::vector<std::int32_t> level_;
-  std::vector<std::uint8_t> current_;
-  std::int32_t sink_level_ = -1;
-  std::vector<std::int64_t> region_, sources_, queue_, path_;
+  std::vector<std::uint8_t> tree_, parent_slot_, is_active_;
+  std::vector<std::int32_t> parent_, stamp_, depth_;  // nodes number fewer than 2^23 (kMaxBoxSamples)
+  std::vector<std::int64_t> region_, sources_, queue_, path_, active_, orphans_;
   std::vector<int> slots_;
 };
 
