@@ -1,15 +1,20 @@
-// Private to the surface stage: a tiny deterministic work-sharing loop on std::thread.
+// Private to the surface stage: a tiny deterministic work-sharing loop on std::thread, and the mapping
+// of large arrays' pages from several threads.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <exception>
-#include <sys/mman.h>
 #include <mutex>
 #include <system_error>
 #include <thread>
 #include <vector>
+
+#if __has_include(<sys/mman.h>)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 namespace spheremap::detail {
 
@@ -66,7 +71,10 @@ template <typename T>
 void reserve_mapped(std::vector<T>& values, std::size_t count, int threads) {
   values.reserve(count);
 #if defined(MADV_POPULATE_WRITE)
-  const std::uintptr_t page = 4096, begin = reinterpret_cast<std::uintptr_t>(values.data());
+  static const long page_size = sysconf(_SC_PAGESIZE);
+  if (page_size <= 0) return;
+  const auto page = static_cast<std::uintptr_t>(page_size);
+  const auto begin = reinterpret_cast<std::uintptr_t>(values.data());
   const std::uintptr_t first = (begin + page - 1) / page * page, end = (begin + count * sizeof(T)) / page * page;
   if (threads <= 1 || end <= first + page * 1024) return;  // small: not worth threads
   const std::uintptr_t pages = (end - first) / page;
