@@ -268,7 +268,7 @@ struct VertexKey {
 // The part of a circle (centre + ρ (cos θ u + sin θ v)) inside another enlarged sphere: θ with
 // 2ρ m cos(θ - φ) < room, where (a, b) = m (cos φ, sin φ); `spread` = 2ρm, and -spread < room < spread.
 struct CoverTerm {
-  double a, b, room, spread;
+  double a, b, room, spread, m;  // m = sqrt(a² + b²)
   std::int32_t atom;
 };
 
@@ -289,7 +289,7 @@ inline bool certainly_covered(const std::vector<CoverTerm>& terms, std::vector<s
     const double cosine = t.room / t.spread;  // of the exposed half-width: covered is θ - φ in (half, 2π - half)
     if (cosine < -1 + 1e-12) continue;       // a sliver (or nothing): leaving it out only makes the answer "unsure"
     const double sine = std::sqrt(std::max(0.0, (1 - cosine) * (1 + cosine)));
-    const double m = std::sqrt(t.a * t.a + t.b * t.b), ca = t.a / m, sa = t.b / m;
+    const double ca = t.a / t.m, sa = t.b / t.m;
     const double start = pseudo_angle(ca * cosine - sa * sine, sa * cosine + ca * sine);
     const double end = pseudo_angle(ca * cosine + sa * sine, sa * cosine - ca * sine);
     // Past a full turn? The covered length is more than π exactly when cosine > 0.
@@ -297,7 +297,13 @@ inline bool certainly_covered(const std::vector<CoverTerm>& terms, std::vector<s
     spans.push_back({start, wraps ? end + 4 : end});
   }
   if (spans.empty()) return false;
-  std::sort(spans.begin(), spans.end());
+  // By insertion: a few dozen spans, where std::sort's set-up cost more than the sorting.
+  for (std::size_t c = 1; c < spans.size(); ++c) {
+    const std::array<double, 2> span = spans[c];
+    std::size_t at = c;
+    for (; at > 0 && span < spans[at - 1]; --at) spans[at] = spans[at - 1];
+    spans[at] = span;
+  }
   const double first = spans.front()[0];
   double reached = spans.front()[1];
   for (const auto& span : spans) reached = std::max(reached, span[1] - 4);  // wrapped parts cover the start again
@@ -499,12 +505,12 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
           const Vec3 offset = centre - atoms[k].position;
           const double a = dot(offset, u), b = dot(offset, v), along_axis = dot(offset, unit_axis);
           const double room = reach2[k] - (a * a + b * b + along_axis * along_axis) - circle_radius * circle_radius;
-          const double spread = 2 * circle_radius * std::sqrt(a * a + b * b);
+          const double m = std::sqrt(a * a + b * b), spread = 2 * circle_radius * m;
           if (room >= spread) {
             whole = true;  // all of it (up to rounding: the test above missed it)
             break;
           }
-          if (room > -spread) terms.push_back({a, b, room, spread, k});
+          if (room > -spread) terms.push_back({a, b, room, spread, m, k});
         }
         // Most of the rest are covered by several spheres together: decided without trigonometry when
         // the union covers the circle with room to spare (certainly_covered); the angles are computed,
