@@ -819,10 +819,21 @@ class MembraneMover {
     if (slot == 0) return (terminal_[ub] != 0 && terminal_[ub] != source_side_) ? kSink : -1;
     if (slot == 1) return used_[ub] ? x - 1 : -1;
     const std::int64_t t = b + offset_[slot - 2];
-    const auto lt = label_[static_cast<std::size_t>(t)], lb = label_[ub];
-    if (lt == kNone || lt == kPending) return -1;
-    if (is_side(lb) && is_side(lt) && lb != lt) return -1;
-    return 2 * t;
+    return joined(label_[ub], label_[static_cast<std::size_t>(t)]) ? 2 * t : -1;
+  }
+
+  // Whether out of a labelled sample (label `from`) leads into its neighbour (label `to`): the neighbour
+  // is labelled too, and the two are not on different sides.
+  [[nodiscard]] static bool joined(std::uint8_t from, std::uint8_t to) {
+    return to != kNone && to != kPending && !(is_side(from) && is_side(to) && from != to);
+  }
+
+  // Calls visit(y, slot) for every node y with a residual arc from node x (y = target(x, slot); the sink
+  // left out).
+  template <typename Visit>
+  void residual_from(std::int64_t x, Visit&& visit) const {
+    for (int slot = 0; slot < arcs(x); ++slot)
+      if (const std::int64_t y = target(x, slot); y >= 0) visit(y, slot);
   }
 
   // Calls visit(q, slot) for every node q with a residual arc into node x (target(q, slot) == x).
@@ -835,9 +846,7 @@ class MembraneMover {
       const auto lb = label_[ub];
       for (int n = 0; n < 14; ++n) {  // out of each labelled neighbour -> into b (unbounded)
         const std::int64_t t = b + offset_[n];
-        const auto lt = label_[static_cast<std::size_t>(t)];
-        if (lt == kNone || lt == kPending || (is_side(lb) && is_side(lt) && lb != lt)) continue;
-        visit(2 * t + 1, 2 + (n ^ 1));
+        if (joined(lb, label_[static_cast<std::size_t>(t)])) visit(2 * t + 1, 2 + (n ^ 1));
       }
       return;
     }
@@ -915,13 +924,13 @@ class MembraneMover {
         const std::int64_t x = active_[head];
         const auto tree = tree_[static_cast<std::size_t>(x)];
         if (tree == kSourceTree) {
-          for (int slot = 0; slot < arcs(x) && from < 0; ++slot) {
-            const std::int64_t y = target(x, slot);
-            if (y < 0) continue;  // none, or the sink (whose nodes root the sink tree for good)
+          // (The sink is left out: the nodes with an arc to it root the sink tree for good.)
+          residual_from(x, [&](std::int64_t y, int slot) {
+            if (from >= 0) return;
             const auto other = tree_[static_cast<std::size_t>(y)];
             if (other == kFree) join(y, kSourceTree, x, slot);
             else if (other == kSinkTree) from = x, via = slot, to = y;
-          }
+          });
         } else if (tree == kSinkTree) {
           residual_into(x, [&](std::int64_t q, int slot) {
             if (from >= 0) return;
@@ -977,9 +986,7 @@ class MembraneMover {
           if (d >= 0 && d < best_depth) best = q, best_slot = slot, best_depth = d;
         };
         if (tree_[uo] == kSourceTree) residual_into(o, consider);
-        else
-          for (int slot = 0; slot < arcs(o); ++slot)
-            if (const std::int64_t y = target(o, slot); y >= 0) consider(y, slot);
+        else residual_from(o, consider);
         if (best >= 0) {
           parent_[uo] = static_cast<std::int32_t>(best);
           parent_slot_[uo] = static_cast<std::uint8_t>(best_slot);
@@ -987,25 +994,18 @@ class MembraneMover {
           depth_[uo] = best_depth + 1;
           continue;
         }
-        // No parent: o leaves its tree; its neighbours in the tree that could reach it are searched again,
-        // and its children are orphans too.
+        // No parent: o leaves its tree; its neighbours in the tree, on either side of an arc, are searched
+        // again (those that could reach it), and its children (among them) are orphans too.
         const auto tree = tree_[uo];
         tree_[uo] = kFree;
-        auto requeue = [&](std::int64_t q) {
+        auto requeue = [&](std::int64_t q, int) {
           const auto uq = static_cast<std::size_t>(q);
           if (tree_[uq] != tree) return;
           activate(q);
           if (parent_[uq] == o) parent_[uq] = kNoParent, orphans_.push_back(q);
         };
-        if (tree == kSourceTree) {
-          residual_into(o, [&](std::int64_t q, int) { requeue(q); });
-          for (int slot = 0; slot < arcs(o); ++slot)
-            if (const std::int64_t y = target(o, slot); y >= 0) requeue(y);
-        } else {
-          for (int slot = 0; slot < arcs(o); ++slot)
-            if (const std::int64_t y = target(o, slot); y >= 0) requeue(y);
-          residual_into(o, [&](std::int64_t q, int) { requeue(q); });
-        }
+        residual_into(o, requeue);
+        residual_from(o, requeue);
       }
     }
   }
@@ -1055,15 +1055,12 @@ class MembraneMover {
     std::vector<std::uint8_t> reached(2 * n, 0);
     queue_.clear();
     for (const auto b : sources_) reached[static_cast<std::size_t>(2 * b)] = 1, queue_.push_back(2 * b);
-    for (std::size_t head = 0; head < queue_.size(); ++head) {
-      const auto x = queue_[head];
-      for (int slot = 0; slot < arcs(x); ++slot) {
-        const auto y = target(x, slot);
-        if (y < 0 || reached[static_cast<std::size_t>(y)]) continue;
+    for (std::size_t head = 0; head < queue_.size(); ++head)
+      residual_from(queue_[head], [&](std::int64_t y, int) {
+        if (reached[static_cast<std::size_t>(y)]) return;
         reached[static_cast<std::size_t>(y)] = 1;
         queue_.push_back(y);
-      }
-    }
+      });
     std::vector<std::int64_t> cut;
     for (const auto b : region_)
       if (reached[static_cast<std::size_t>(2 * b)] && !reached[static_cast<std::size_t>(2 * b + 1)]) cut.push_back(global(b));
