@@ -239,8 +239,8 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
   // Fill-reducing order of our own (geometric nested dissection): CHOLMOD's default search tries
   // several orderings (27 s for one 100k-vertex factorization measured here) and plain AMD fills 2-4x
   // more on smooth surface meshes (on molecular surfaces it fills less: map_to_sphere chooses between the
-  // two through ReusableCholesky, which this one-off solve does not). The lower triangle is written column by column in that order, directly in
-  // CHOLMOD's format, and factorized in natural order.
+  // two through ReusableCholesky, which this one-off solve does not). The lower triangle is written
+  // column by column in that order, directly in CHOLMOD's format, and factorized in natural order.
   const auto order = nested_dissection_order(matrix, unknown_positions);  // order[k]: unknown at row k
   std::vector<std::int32_t> row_of(static_cast<std::size_t>(unknowns));
   for (std::int32_t k = 0; k < unknowns; ++k) row_of[order[k]] = k;
