@@ -91,6 +91,50 @@ TEST(DistanceTransform, EveryKindOfLineMatchesBruteForce) {
   }
 }
 
+TEST(DistanceTransform, ZeroSurroundingsAsInAMoleculesGrid) {
+  // Zeros (probe centres) around nonzero blobs, as in a molecule's grid: whole blocks of lines and whole
+  // planes without a nonzero sample are skipped, and lines are gathered only around their nonzero part;
+  // one blob touches the grid's border (no zero beyond it).
+  std::mt19937 random(17);
+  Grid3<double> start;
+  start.size = {45, 13, 12};  // three blocks of 16 lines along x, the last one partial
+  start.values.assign(static_cast<std::size_t>(start.count()), 0.0);
+  auto blob = [&](double ci, double cj, double ck, double radius) {
+    for (std::int64_t k = 0; k < start.size[2]; ++k)
+      for (std::int64_t j = 0; j < start.size[1]; ++j)
+        for (std::int64_t i = 0; i < start.size[0]; ++i) {
+          const double d2 = (i - ci) * (i - ci) + (j - cj) * (j - cj) + (k - ck) * (k - ck);
+          if (d2 < radius * radius)
+            start.values[start.index(i, j, k)] = random() % 3 == 0 ? static_cast<double>(random() % 30 + 1) : std::numeric_limits<double>::infinity();
+        }
+  };
+  blob(7, 6, 5, 4.5);
+  blob(40, 0, 11, 3.5);  // at the borders of axes 1 and 2
+  auto brute = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::int64_t c = 0; c < start.size[2]; ++c)
+      for (std::int64_t b = 0; b < start.size[1]; ++b)
+        for (std::int64_t a = 0; a < start.size[0]; ++a)
+          best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
+    return best;
+  };
+  for (int threads : {1, 2, 3}) {
+    Grid3<double> d = start;
+    squared_distance_transform_in_place(d, threads);
+    Grid3<float> f;
+    f.size = start.size;
+    f.values.assign(start.values.begin(), start.values.end());
+    squared_distance_transform_in_place(f, threads);
+    for (std::int64_t k = 0; k < start.size[2]; ++k)
+      for (std::int64_t j = 0; j < start.size[1]; ++j)
+        for (std::int64_t i = 0; i < start.size[0]; ++i) {
+          const double expected = brute(i, j, k);
+          ASSERT_EQ(d.values[d.index(i, j, k)], expected) << threads << " " << i << " " << j << " " << k;
+          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected) << threads;
+        }
+  }
+}
+
 TEST(DistanceTransform, NoTargetGivesInfinity) {
   Grid3<std::uint8_t> empty;
   empty.size = {3, 3, 3};
