@@ -1,6 +1,7 @@
 #include "spheremap/surface/ses.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -268,7 +269,7 @@ struct VertexKey {
 // The part of a circle (centre + ρ (cos θ u + sin θ v)) inside another enlarged sphere: θ with
 // 2ρ m cos(θ - φ) < room, where (a, b) = m (cos φ, sin φ); `spread` = 2ρm, and -spread < room < spread.
 struct CoverTerm {
-  double a, b, room, spread, m;  // m = sqrt(a² + b²)
+  double a, b, room, spread;
   std::int32_t atom;
 };
 
@@ -281,37 +282,51 @@ inline double pseudo_angle(double x, double y) {
 }
 
 // Whether the parts in `terms` cover the whole circle with a margin far beyond rounding (1e-9 rad);
-// false when they do not, or might not. `spans` is scratch.
-inline bool certainly_covered(const std::vector<CoverTerm>& terms, std::vector<std::array<double, 2>>& spans) {
-  constexpr double kMargin = 1e-9;
-  spans.clear();
+// false when they do not, or might not.
+//
+// Without sorting: the parts are put in kCoverBuckets buckets of pseudo-angle by where they start, and
+// each bucket keeps only the farthest end of its parts. The sweep then takes every part of a bucket to
+// start at the bucket's upper edge: later than it does, which only shrinks the union, so "covered" stays
+// certain; a bucket whose edge is not yet reached is passed over (its parts left out), which can only
+// turn a covered circle into "unsure". 256 buckets of 1.4° are narrow beside the overlaps of the spheres
+// around a buried circle.
+constexpr int kCoverBuckets = 256;
+struct CoverScratch {
+  std::array<double, kCoverBuckets> farthest{};
+};
+inline bool certainly_covered(const std::vector<CoverTerm>& terms, CoverScratch& scratch) {
+  constexpr double kMargin = 1e-9, kWidth = 4.0 / kCoverBuckets;
+  std::array<std::uint64_t, kCoverBuckets / 64> used{};
+  double from_zero = 0;  // [0, from_zero) is covered by the parts that wrap past a full turn
+  bool any = false;
   for (const CoverTerm& t : terms) {
-    const double cosine = t.room / t.spread;  // of the exposed half-width: covered is θ - φ in (half, 2π - half)
-    if (cosine < -1 + 1e-12) continue;       // a sliver (or nothing): leaving it out only makes the answer "unsure"
-    const double sine = std::sqrt(std::max(0.0, (1 - cosine) * (1 + cosine)));
-    const double ca = t.a / t.m, sa = t.b / t.m;
-    const double start = pseudo_angle(ca * cosine - sa * sine, sa * cosine + ca * sine);
-    const double end = pseudo_angle(ca * cosine + sa * sine, sa * cosine - ca * sine);
-    // Past a full turn? The covered length is more than π exactly when cosine > 0.
-    const bool wraps = cosine > 0 ? end <= start : end < start;
-    spans.push_back({start, wraps ? end + 4 : end});
+    // Exposed where cos(θ - φ) > room / spread, i.e. |θ - φ| < half; covered is θ - φ in (half, 2π - half).
+    // The ends are (a, b) turned by ±half, scaled by spread (pseudo_angle does not depend on length):
+    // no division but pseudo_angle's.
+    if (t.room < (-1 + 1e-12) * t.spread) continue;  // a sliver (or nothing): leaving it out only makes the answer "unsure"
+    const double cosine = t.room, sine = std::sqrt(std::max(0.0, (t.spread - t.room) * (t.spread + t.room)));
+    const double start = pseudo_angle(t.a * cosine - t.b * sine, t.b * cosine + t.a * sine);
+    if (!(start >= 0 && start <= 4)) return false;  // not a number: cannot happen (spread > 0), kept out of the cast
+    double end = pseudo_angle(t.a * cosine + t.b * sine, t.b * cosine - t.a * sine);
+    // Past a full turn? The covered length is more than π exactly when cos(half) > 0.
+    if (cosine > 0 ? end <= start : end < start) end += 4, from_zero = std::max(from_zero, end - 4);
+    const int bucket = std::min(static_cast<int>(start * (kCoverBuckets / 4.0)), kCoverBuckets - 1);
+    const std::uint64_t bit = std::uint64_t{1} << (bucket & 63);
+    auto& word = used[static_cast<std::size_t>(bucket >> 6)];
+    double& farthest = scratch.farthest[static_cast<std::size_t>(bucket)];
+    farthest = (word & bit) ? std::max(farthest, end) : end;
+    word |= bit;
+    any = true;
   }
-  if (spans.empty()) return false;
-  // By insertion: a few dozen spans, where std::sort's set-up cost more than the sorting.
-  for (std::size_t c = 1; c < spans.size(); ++c) {
-    const std::array<double, 2> span = spans[c];
-    std::size_t at = c;
-    for (; at > 0 && span < spans[at - 1]; --at) spans[at] = spans[at - 1];
-    spans[at] = span;
-  }
-  const double first = spans.front()[0];
-  double reached = spans.front()[1];
-  for (const auto& span : spans) reached = std::max(reached, span[1] - 4);  // wrapped parts cover the start again
-  for (std::size_t c = 1; c < spans.size(); ++c) {
-    if (spans[c][0] > reached - kMargin) return false;
-    reached = std::max(reached, spans[c][1]);
-  }
-  return reached > first + 4 + kMargin;
+  if (!any) return false;
+  double reached = from_zero;
+  for (std::size_t w = 0; w < used.size(); ++w)
+    for (std::uint64_t word = used[w]; word != 0; word &= word - 1) {
+      const auto bucket = static_cast<int>(w * 64) + std::countr_zero(word);
+      if (static_cast<double>(bucket + 1) * kWidth <= reached - kMargin)
+        reached = std::max(reached, scratch.farthest[static_cast<std::size_t>(bucket)]);
+    }
+  return reached > 4 + kMargin;
 }
 
 // Probe centres on the SAS surface (see solvent_excluded_field), in grid coordinates; decides on the way
@@ -366,19 +381,6 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
   for (auto& part : chunk_neighbours) neighbours.insert(neighbours.end(), part.begin(), part.end()), std::vector<std::int32_t>().swap(part);
 
   clock.lap("neighbours");
-  // Whether p (on the sphere of `self`) is strictly inside another enlarged sphere.
-  // `hint` remembers the last covering atom: neighbouring points are mostly covered by the same one.
-  auto covered = [&](const Vec3& p, std::int32_t self, std::int32_t& hint) {
-    if (hint >= 0 && hint != self && squared_distance(p, atoms[hint].position) < reach2[hint]) return true;
-    for (auto m = neighbour_start[self]; m < neighbour_start[self + 1]; ++m) {
-      const std::int32_t other = neighbours[static_cast<std::size_t>(m)];
-      if (squared_distance(p, atoms[other].position) < reach2[other]) {
-        hint = other;
-        return true;
-      }
-    }
-    return false;
-  };
   // Whether the segment from p to q (Å) stays outside every enlarged sphere (it may touch them: p and q
   // may lie on the SAS).
   auto segment_free = [&](const Vec3& p, const Vec3& q) {
@@ -441,7 +443,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     };
     std::vector<Covering> coverings;
     std::vector<CoverTerm> terms;
-    std::vector<std::array<double, 2>> spans;
+    CoverScratch spans;
     std::vector<std::int32_t> common;
     std::vector<Gap> gaps;
     std::vector<std::int64_t> linked;
@@ -510,7 +512,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
             whole = true;  // all of it (up to rounding: the test above missed it)
             break;
           }
-          if (room > -spread) terms.push_back({a, b, room, spread, m, k});
+          if (room > -spread) terms.push_back({a, b, room, spread, k});
         }
         // Most of the rest are covered by several spheres together: decided without trigonometry when
         // the union covers the circle with room to spare (certainly_covered); the angles are computed,
@@ -637,12 +639,32 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
     return false;
   };
   std::vector<std::vector<Vec3>> chunk_centres(static_cast<std::size_t>(chunks));
+  struct Coverer {
+    Vec3 centre;
+    double reach2;
+  };
   detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
     auto& out = chunk_centres[static_cast<std::size_t>(chunk)];
-    std::int32_t hint = -1;
+    std::vector<Coverer> coverers;
     for (std::int32_t index = static_cast<std::int32_t>(chunk) * kAtomsPerChunk; index < std::min(count, static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk); ++index) {
       if (face[static_cast<std::size_t>(index)] == 1) continue;  // buried
       const auto& atom = atoms[index];
+      // Whether p (on this atom's enlarged sphere) is strictly inside another one (only the overlapping
+      // spheres can hold it). Which sphere holds p does not matter, so the list is kept in the order of
+      // last use: neighbouring samples are mostly held by the sphere that held the one before.
+      coverers.clear();
+      for (auto m = neighbour_start[index]; m < neighbour_start[index + 1]; ++m) {
+        const std::int32_t other = neighbours[static_cast<std::size_t>(m)];
+        coverers.push_back({atoms[other].position, reach2[other]});
+      }
+      auto covered = [&](const Vec3& p) {
+        for (auto c = coverers.begin(); c != coverers.end(); ++c)
+          if (squared_distance(p, c->centre) < c->reach2) {
+            std::rotate(coverers.begin(), c, c + 1);
+            return true;
+          }
+        return false;
+      };
       const double outer = reach[index], inner = outer - h;
       // In crevices narrower than a grid step no sample is outside the SAS, yet a probe fits: every
       // sample just inside an enlarged sphere (within one step) projects radially onto it, and the
@@ -674,7 +696,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
             const double distance = norm(x - atom.position);
             if (distance >= outer || distance < inner || distance == 0) continue;
             const Vec3 centre = atom.position + (outer / distance) * (x - atom.position);
-            if (covered(centre, index, hint)) continue;
+            if (covered(centre)) continue;
             const Vec3 unit = to_grid(centre);
             if (connected(unit)) out.push_back(unit);
           }
@@ -1071,9 +1093,23 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
                      options.use_avx2);
   clock.lap("lower");
   const std::int64_t plane = field.size[0] * field.size[1];
+  // About half the samples are probe centres (0): runs of them take their value, -probe, without the
+  // square root that bounds this loop (sqrt(0) h - probe is exactly -probe).
+  constexpr std::int64_t kRun = 16;
+  const auto at_centre = static_cast<T>(-probe);
   detail::parallel_chunks(field.size[2], threads, [&](std::int64_t k, int) {
     T* values = field.values.data() + k * plane;
-    for (std::int64_t s = 0; s < plane; ++s) values[s] = static_cast<T>(std::sqrt(static_cast<double>(values[s])) * h - probe);
+    for (std::int64_t first = 0; first < plane; first += kRun) {
+      T* run = values + first;
+      const std::int64_t length = std::min(kRun, plane - first);
+      bool zeros = true;
+      for (std::int64_t s = 0; s < length; ++s) zeros &= run[s] == T(0);
+      if (zeros) {
+        std::fill_n(run, length, at_centre);
+        continue;
+      }
+      for (std::int64_t s = 0; s < length; ++s) run[s] = static_cast<T>(std::sqrt(static_cast<double>(run[s])) * h - probe);
+    }
   });
   clock.lap("root");
   return field;
@@ -1100,9 +1136,13 @@ Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptio
   Mesh mesh;
   {
     const Grid3<float> field = solvent_excluded_field_float(atoms, options);
+    StageClock clock;
     mesh = contour_isosurface(field, 0.0, options.threads, options.contour_minimum_fraction);
+    clock.lap("contour");
   }
+  StageClock clock;
   add_nearest_atoms(mesh, atoms, options);
+  clock.lap("provenance");
   return mesh;
 }
 
