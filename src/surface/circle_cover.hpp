@@ -33,8 +33,8 @@ inline double pseudo_angle(double x, double y) {
 // each bucket keeps only the farthest end of its parts. The sweep then takes every part of a bucket to
 // start at the bucket's upper edge: later than it does, which only shrinks the union, so "covered" stays
 // certain; a bucket whose edge is not yet reached is passed over (its parts left out), which can only
-// turn a covered circle into "unsure". 256 buckets (0.9–1.8° each) are narrow beside the overlaps of the spheres
-// around a buried circle.
+// turn a covered circle into "unsure". 256 buckets (0.9–1.8° each) are narrow beside the overlaps of
+// the spheres around a buried circle.
 constexpr int kCoverBuckets = 256;
 struct CoverScratch {
   std::array<double, kCoverBuckets> farthest{};
