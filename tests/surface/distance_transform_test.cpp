@@ -9,6 +9,36 @@
 namespace spheremap {
 namespace {
 
+// min over samples p of |q - p|² + start(p), sample by sample: what the transform must give at q.
+double brute_force(const Grid3<double>& start, std::int64_t i, std::int64_t j, std::int64_t k) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::int64_t c = 0; c < start.size[2]; ++c)
+    for (std::int64_t b = 0; b < start.size[1]; ++b)
+      for (std::int64_t a = 0; a < start.size[0]; ++a)
+        best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
+  return best;
+}
+
+// The in-place transform of `start`, in double and in float, on 1, 2 and 3 threads, equals brute_force
+// everywhere (the float results are integers below 2^24 here: exact).
+void expect_in_place_matches_brute_force(const Grid3<double>& start) {
+  for (int threads : {1, 2, 3}) {
+    Grid3<double> d = start;
+    squared_distance_transform_in_place(d, threads);
+    Grid3<float> f;
+    f.size = start.size;
+    f.values.assign(start.values.begin(), start.values.end());
+    squared_distance_transform_in_place(f, threads);
+    for (std::int64_t k = 0; k < start.size[2]; ++k)
+      for (std::int64_t j = 0; j < start.size[1]; ++j)
+        for (std::int64_t i = 0; i < start.size[0]; ++i) {
+          const double expected = brute_force(start, i, j, k);
+          ASSERT_EQ(d.values[d.index(i, j, k)], expected) << threads << " " << i << " " << j << " " << k;
+          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected) << threads << " " << i << " " << j << " " << k;
+        }
+  }
+}
+
 TEST(DistanceTransform, MatchesBruteForceOnRandomTargets) {
   std::mt19937 random(3);
   for (int trial = 0; trial < 5; ++trial) {
@@ -37,29 +67,7 @@ TEST(DistanceTransform, InPlaceWithAnyStartValuesInDoubleAndFloatAndAnyThreads) 
   start.size = {23, 9, 14};  // wider than one block of lines along x
   start.values.resize(static_cast<std::size_t>(start.count()));
   for (auto& v : start.values) v = random() % 4 == 0 ? static_cast<double>(random() % 50) : std::numeric_limits<double>::infinity();
-  auto brute = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::int64_t c = 0; c < start.size[2]; ++c)
-      for (std::int64_t b = 0; b < start.size[1]; ++b)
-        for (std::int64_t a = 0; a < start.size[0]; ++a)
-          best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
-    return best;
-  };
-  for (int threads : {1, 2, 3}) {
-    Grid3<double> d = start;
-    squared_distance_transform_in_place(d, threads);
-    Grid3<float> f;
-    f.size = start.size;
-    f.values.assign(start.values.begin(), start.values.end());
-    squared_distance_transform_in_place(f, threads);
-    for (std::int64_t k = 0; k < start.size[2]; ++k)
-      for (std::int64_t j = 0; j < start.size[1]; ++j)
-        for (std::int64_t i = 0; i < start.size[0]; ++i) {
-          const double expected = brute(i, j, k);
-          ASSERT_EQ(d.values[d.index(i, j, k)], expected) << threads;
-          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected) << threads;  // integers below 2^24: exact
-        }
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_in_place_matches_brute_force(start));
 }
 
 TEST(DistanceTransform, EveryKindOfLineMatchesBruteForce) {
@@ -81,12 +89,7 @@ TEST(DistanceTransform, EveryKindOfLineMatchesBruteForce) {
     for (std::int64_t k = 0; k < start.size[2]; ++k)
       for (std::int64_t j = 0; j < start.size[1]; ++j)
         for (std::int64_t i = 0; i < start.size[0]; ++i) {
-          double best = std::numeric_limits<double>::infinity();
-          for (std::int64_t c = 0; c < start.size[2]; ++c)
-            for (std::int64_t b = 0; b < start.size[1]; ++b)
-              for (std::int64_t a = 0; a < start.size[0]; ++a)
-                best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
-          ASSERT_EQ(d.values[d.index(i, j, k)], best) << kind << " " << i << " " << j << " " << k;
+          ASSERT_EQ(d.values[d.index(i, j, k)], brute_force(start, i, j, k)) << kind << " " << i << " " << j << " " << k;
         }
   }
 }
@@ -110,29 +113,7 @@ TEST(DistanceTransform, ZeroSurroundingsAsInAMoleculesGrid) {
   };
   blob(7, 6, 5, 4.5);
   blob(40, 0, 11, 3.5);  // at the borders of axes 1 and 2
-  auto brute = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::int64_t c = 0; c < start.size[2]; ++c)
-      for (std::int64_t b = 0; b < start.size[1]; ++b)
-        for (std::int64_t a = 0; a < start.size[0]; ++a)
-          best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
-    return best;
-  };
-  for (int threads : {1, 2, 3}) {
-    Grid3<double> d = start;
-    squared_distance_transform_in_place(d, threads);
-    Grid3<float> f;
-    f.size = start.size;
-    f.values.assign(start.values.begin(), start.values.end());
-    squared_distance_transform_in_place(f, threads);
-    for (std::int64_t k = 0; k < start.size[2]; ++k)
-      for (std::int64_t j = 0; j < start.size[1]; ++j)
-        for (std::int64_t i = 0; i < start.size[0]; ++i) {
-          const double expected = brute(i, j, k);
-          ASSERT_EQ(d.values[d.index(i, j, k)], expected) << threads << " " << i << " " << j << " " << k;
-          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected) << threads;
-        }
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_in_place_matches_brute_force(start));
 }
 
 TEST(DistanceTransform, NoTargetGivesInfinity) {
