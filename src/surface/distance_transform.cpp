@@ -130,9 +130,9 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
   for (auto& s : scratch) s.in.resize(static_cast<std::size_t>(longest * kBlock)), s.out.resize(static_cast<std::size_t>(longest));
 
   // Zeros stay zero and other values stay nonzero (with f >= 0 a sample's new value is at least the
-  // smaller of its old value and 1), so where the nonzero samples lie is known from the start. The first pass records it
-  // per block of kBlock neighbouring lines: the range of rows j (per plane k) and of planes k (per row j)
-  // holding a nonzero sample. The later passes gather only that range, widened by one sample: the zeros
+  // smaller of its old value and 1), so where the nonzero samples lie is known from the start. The first
+  // pass records it per block of kBlock neighbouring lines: the range of rows j (per plane k) and of
+  // planes k (per row j) holding a nonzero sample. The later passes gather only that range, widened by one sample: the zeros
   // beyond it are nearer to that zero than to anything on the far side, which is what
   // transform_any_line does with them anyway (it reads the whole line only to find them). A block
   // without a nonzero sample is skipped. The result is the same to the last bit.
