@@ -2,10 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 #include "parallel.hpp"
@@ -340,8 +346,22 @@ std::vector<std::uint16_t> outside_depth(const Grid3<T>& field, double level, in
 // How many visits ahead the growths fetch a sample's neighbourhood.
 constexpr std::size_t kPrefetchAhead = 8;
 
+// The two growths run at once on two threads (grow_both). Each writes only the state bytes of its own
+// side's samples (the solid's growth the inside ones, the outside's the outside ones), and reads the other
+// side's bytes only for bits that never change there (kInside) or that only its own side ever has (its
+// member bit): each decision is the one it would be with the growths one after the other. The bytes are
+// still shared, so they are read and written as relaxed atomics (plain moves on x86-64); a byte has one
+// writer, so a load then a store is a safe update.
+inline std::uint8_t load_state(const std::uint8_t* state, std::int64_t s) {
+  return std::atomic_ref<std::uint8_t>(const_cast<std::uint8_t&>(state[s])).load(std::memory_order_relaxed);
+}
+inline void store_state(std::uint8_t* state, std::int64_t s, std::uint8_t value) {
+  std::atomic_ref<std::uint8_t>(state[s]).store(value, std::memory_order_relaxed);
+}
+
 // Grows the solid by simple samples only, deepest first (by field value, in buckets of spacing/256),
 // from the deepest sample of its largest piece, and marks the members kInSolid: the set stays a ball.
+// Touches the kQueued and kInSolid bits of inside samples only.
 template <typename T, typename Index>
 void grow_solid(const Grid3<T>& field, double level, const Lattice& lattice, std::uint8_t* state) {
   const auto& simple = simple_table();
@@ -359,9 +379,10 @@ void grow_solid(const Grid3<T>& field, double level, const Lattice& lattice, std
   {
     std::vector<Index> stack;
     for (std::int64_t start = 0; start < total; ++start) {
-      if ((state[start] & (kInside | kQueued)) != kInside) continue;
+      const std::uint8_t b = load_state(state, start);
+      if ((b & (kInside | kQueued)) != kInside) continue;
       std::int64_t size = 0, deepest = start;
-      state[start] |= kQueued;
+      store_state(state, start, b | kQueued);
       stack.push_back(static_cast<Index>(start));
       while (!stack.empty()) {
         const auto v = static_cast<std::int64_t>(stack.back());
@@ -370,12 +391,16 @@ void grow_solid(const Grid3<T>& field, double level, const Lattice& lattice, std
         if (values[v] > values[deepest] || (values[v] == values[deepest] && v < deepest)) deepest = v;
         for (int n = 0; n < 14; ++n) {
           const std::int64_t t = v + offset[n];
-          if ((state[t] & (kInside | kQueued)) == kInside) state[t] |= kQueued, stack.push_back(static_cast<Index>(t));
+          const std::uint8_t bt = load_state(state, t);
+          if ((bt & (kInside | kQueued)) == kInside) store_state(state, t, bt | kQueued), stack.push_back(static_cast<Index>(t));
         }
       }
       if (size > seed_piece_size) seed_piece_size = size, seed = deepest;
     }
-    for (std::int64_t s = 0; s < total; ++s) state[s] &= static_cast<std::uint8_t>(~kQueued);
+    for (std::int64_t s = 0; s < total; ++s) {
+      const std::uint8_t b = load_state(state, s);
+      if ((b & (kInside | kQueued)) == (kInside | kQueued)) store_state(state, s, b & static_cast<std::uint8_t>(~kQueued));
+    }
   }
   if (seed < 0) throw std::invalid_argument("cut_handles: nothing is inside");
   const double quantum = field.spacing / 256;
@@ -384,14 +409,14 @@ void grow_solid(const Grid3<T>& field, double level, const Lattice& lattice, std
   auto offer_neighbours = [&](std::int64_t s) {
     for (int n = 0; n < 14; ++n) {
       const std::int64_t t = s + offset[n];
-      const std::uint8_t b = state[t];
+      const std::uint8_t b = load_state(state, t);
       if ((b & (kInside | kInSolid | kQueued)) != kInside) continue;
-      state[t] = b | kQueued;
+      store_state(state, t, b | kQueued);
       const double v = static_cast<double>(values[t]);
       frontier.push(std::isfinite(v) ? static_cast<std::size_t>((top_value - v) / quantum) : 0, static_cast<Index>(t));
     }
   };
-  state[seed] |= kInSolid;
+  store_state(state, seed, load_state(state, seed) | kInSolid);
   offer_neighbours(seed);
   // A sample refused now may become simple later, when more of its neighbours are in: it is offered again
   // whenever a neighbour joins (the queued bit is cleared on refusal). Each sample is offered at most 14 times.
@@ -402,62 +427,97 @@ void grow_solid(const Grid3<T>& field, double level, const Lattice& lattice, std
       prefetch.neighbourhood(state, static_cast<std::int64_t>(*later));
       prefetch.neighbourhood(values, static_cast<std::int64_t>(*later));
     }
-    state[s] &= static_cast<std::uint8_t>(~kQueued);
+    const std::uint8_t b = load_state(state, s) & static_cast<std::uint8_t>(~kQueued);
     unsigned mask = 0;
-    for (int n = 0; n < 14; ++n) mask |= static_cast<unsigned>(state[s + offset[n]] & kInSolid) << n;
+    for (int n = 0; n < 14; ++n) mask |= static_cast<unsigned>(load_state(state, s + offset[n]) & kInSolid) << n;
     if (simple[mask]) {
-      state[s] |= kInSolid;
+      store_state(state, s, b | kInSolid);
       offer_neighbours(s);
+    } else {
+      store_state(state, s, b);
     }
   }
 }
 
 // Grows the outside the same way from the whole grid border (everything beyond the grid counted in), by
-// decreasing distance to the solid, and marks the members kInOutside: the set stays a shell and what it
-// encloses a ball.
-template <typename T, typename Index>
-void grow_outside(const Grid3<T>& field, double level, const Lattice& lattice, std::uint8_t* state, int threads) {
+// decreasing distance to the solid (`depth`, outside_depth), and marks the members kInOutside: the set
+// stays a shell and what it encloses a ball. Touches the kQueued and kInOutside bits of outside samples only.
+template <typename Index>
+void grow_outside(const Lattice& lattice, const std::array<std::int64_t, 3>& size, const std::vector<std::uint16_t>& depth,
+                  std::uint8_t* state) {
   const auto& simple = simple_table();
   std::array<std::int64_t, 14> offset{};
   for (int n = 0; n < 14; ++n) offset[n] = lattice.offset(n);
-  const std::vector<std::uint16_t> depth = outside_depth(field, level, threads);
   BucketQueue<Index> frontier(std::size_t{kDepthCap} + 1);
   // Smaller key = farther from the solid.
   auto offer = [&](std::int64_t t) {
-    const std::uint8_t b = state[t];
+    const std::uint8_t b = load_state(state, t);
     if (b & (kInside | kInOutside | kQueued)) return;
-    state[t] = b | kQueued;
+    store_state(state, t, b | kQueued);
     const std::uint32_t d = depth[static_cast<std::size_t>(t)];
     frontier.push(d >= kDepthCap ? 0 : kDepthCap - d, static_cast<Index>(t));
   };
-  lattice.border([&](std::int64_t s) { state[s] |= kInOutside; });
+  lattice.border([&](std::int64_t s) { store_state(state, s, load_state(state, s) | kInOutside); });
   lattice.border([&](std::int64_t s) {
     lattice.neighbours(s, [&](int, std::int64_t t) {
       if (t >= 0) offer(t);
     });
   });
   // Border samples are members from the start, so every sample popped is off the border: plain offsets.
-  const Prefetch prefetch(field.size);
+  const Prefetch prefetch(size);
   while (!frontier.empty()) {
     const auto s = static_cast<std::int64_t>(frontier.pop());
     if (const Index* later = frontier.peek(kPrefetchAhead)) {
       prefetch.neighbourhood(state, static_cast<std::int64_t>(*later));
       prefetch.neighbourhood(depth.data(), static_cast<std::int64_t>(*later));
     }
-    state[s] &= static_cast<std::uint8_t>(~kQueued);
+    const std::uint8_t b = load_state(state, s) & static_cast<std::uint8_t>(~kQueued);
     unsigned mask = 0;
-    for (int n = 0; n < 14; ++n) mask |= static_cast<unsigned>((state[s + offset[n]] & kInOutside) >> 1) << n;
+    for (int n = 0; n < 14; ++n) mask |= static_cast<unsigned>((load_state(state, s + offset[n]) & kInOutside) >> 1) << n;
     if (simple[mask]) {
-      state[s] |= kInOutside;
+      store_state(state, s, b | kInOutside);
       for (int n = 0; n < 14; ++n) offer(s + offset[n]);
+    } else {
+      store_state(state, s, b);
     }
   }
 }
 
 // Both growths, marked in one state byte per sample (plus, while the outside grows, two bytes of
-// distance per sample).
+// distance per sample). With more than one thread the two growths run at once (see load_state).
+template <typename T, typename Index>
+void grow_both_with(const Grid3<T>& field, double level, const Lattice& lattice, std::uint8_t* state, int threads) {
+  const std::vector<std::uint16_t> depth = outside_depth(field, level, threads);
+  std::optional<std::thread> solid_thread;
+  std::exception_ptr solid_error;
+  if (detail::surface_threads(threads) > 1) {
+    try {
+      solid_thread.emplace([&] {
+        try {
+          grow_solid<T, Index>(field, level, lattice, state);
+        } catch (...) {
+          solid_error = std::current_exception();
+        }
+      });
+    } catch (const std::system_error&) {
+      solid_thread.reset();  // no second thread: one growth after the other
+    }
+  }
+  if (!solid_thread) grow_solid<T, Index>(field, level, lattice, state);
+  try {
+    grow_outside<Index>(lattice, field.size, depth, state);
+  } catch (...) {
+    if (solid_thread) solid_thread->join();
+    throw;
+  }
+  if (solid_thread) solid_thread->join();
+  if (solid_error) std::rethrow_exception(solid_error);
+}
+
+// `threads`: 0 for one per hardware thread, as the public functions take it.
 template <typename T>
 std::vector<std::uint8_t> grow_both(const Grid3<T>& field, double level, int threads) {
+  threads = detail::surface_threads(threads);  // parallel_chunks takes a count: 0 would run one thread
   const Lattice lattice(field.size);
   std::vector<std::uint8_t> state(static_cast<std::size_t>(field.count()), 0);
   bool any_inside = false;
@@ -470,13 +530,10 @@ std::vector<std::uint8_t> grow_both(const Grid3<T>& field, double level, int thr
   lattice.border([&](std::int64_t s) {
     if (state[static_cast<std::size_t>(s)] & kInside) throw std::invalid_argument("cut_handles: the solid reaches the border of the grid");
   });
-  if (field.count() <= static_cast<std::int64_t>(std::numeric_limits<std::uint32_t>::max())) {
-    grow_solid<T, std::uint32_t>(field, level, lattice, state.data());
-    grow_outside<T, std::uint32_t>(field, level, lattice, state.data(), threads);
-  } else {
-    grow_solid<T, std::int64_t>(field, level, lattice, state.data());
-    grow_outside<T, std::int64_t>(field, level, lattice, state.data(), threads);
-  }
+  if (field.count() <= static_cast<std::int64_t>(std::numeric_limits<std::uint32_t>::max()))
+    grow_both_with<T, std::uint32_t>(field, level, lattice, state.data(), threads);
+  else
+    grow_both_with<T, std::int64_t>(field, level, lattice, state.data(), threads);
   return state;
 }
 
@@ -1166,6 +1223,7 @@ struct Candidate {
 
 template <typename T>
 HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_fraction, int threads, int handles_to_remove) {
+  threads = detail::surface_threads(threads);
   auto state = grow_both(field, level, threads);
   const Lattice lattice(field.size);
   const auto total = lattice.count();
@@ -1226,15 +1284,31 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
     candidate.euler = on_main[c] ? euler_change(field, level, candidate.change.samples, candidate.change.filled, state.data()) : 0;
   }
   // Each membrane moves to the thinnest section nearby when that changes less area, removes at least as
-  // many handles and stays apart from the other clusters of its side.
+  // many handles and stays apart from the other clusters of its side. The search for each one's thinner
+  // section reads only what stays fixed until the changes are applied (the grown sets, the field), so the
+  // searches run in parallel, one mover per thread; the checks that follow depend on the membranes moved
+  // before (which samples are clustered) and run in order, as they would one after another.
   const int reach = std::max(2, static_cast<int>(std::lround(kMembraneReach / field.spacing)));
-  MembraneMover mover(lattice, field.size, state.data(), reach);
-  for (auto& c : candidates) {
+  std::vector<std::vector<std::int64_t>> moved_of(candidates.size());
+  {
+    std::vector<std::unique_ptr<MembraneMover>> movers(static_cast<std::size_t>(detail::surface_threads(threads)));
+    detail::parallel_chunks(static_cast<std::int64_t>(candidates.size()), threads, [&](std::int64_t k, int worker) {
+      const auto& c = candidates[static_cast<std::size_t>(k)];
+      if (c.euler <= 0) return;
+      auto& mover = movers[static_cast<std::size_t>(worker)];
+      if (!mover) mover = std::make_unique<MembraneMover>(lattice, field.size, state.data(), reach);
+      auto moved = mover->move(c.change.samples, c.change.filled ? kInOutside : kInSolid);
+      if (moved.empty() || !mover->complete(moved, !c.change.filled, [&](std::int64_t t) { return values[t] > level; })) return;
+      moved_of[static_cast<std::size_t>(k)] = std::move(moved);
+    });
+  }
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    auto& c = candidates[k];
     if (c.euler <= 0) continue;
     c.area = area_change(field, level, minimum_fraction, c.change.samples, new_value(c.change));
-    auto moved = mover.move(c.change.samples, c.change.filled ? kInOutside : kInSolid);
+    auto moved = std::move(moved_of[k]);
     const bool inside = !c.change.filled;
-    if (moved.empty() || !mover.complete(moved, inside, [&](std::int64_t t) { return values[t] > level; })) continue;
+    if (moved.empty()) continue;
     for (const auto s : c.change.samples) state[s] |= kMark;
     bool apart = true;
     for (const auto s : moved) {

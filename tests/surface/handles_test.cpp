@@ -462,11 +462,15 @@ TEST(Handles, RepairsDoNotDependOnTheNumberOfThreadsAndChangesAddUpToTheAreaChan
     return best;
   };
   auto one = sample(36, 0.25, {-4.5, -4.5, -4.5}, necklace);
-  auto three = one;
+  auto two = one, three = one;
   const double before = contour_area(one);
   ASSERT_GT(mesh_components(contour_isosurface(one, 0)).front().genus, 1);
+  // One thread: the growths one after the other and one membrane searched at a time; two or more: the
+  // growths at once, and membranes searched in parallel.
   const auto a = repair_outer_genus(one, 0, 1);
   const auto b = repair_outer_genus(three, 0, 3);
+  repair_outer_genus(two, 0, 2);
+  EXPECT_EQ(one.values, two.values);
   EXPECT_EQ(one.values, three.values);
   ASSERT_EQ(a.per_handle.changes.size(), b.per_handle.changes.size());
   ASSERT_EQ(a.method, "per-handle");

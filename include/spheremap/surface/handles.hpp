@@ -37,8 +37,9 @@ struct HandleCut {
 /// Both growths take samples from bucket queues: the solid by its value in steps of 1/256 of the grid
 /// spacing, the outside by its squared lattice distance to the solid (exact below 65535 steps², capped
 /// there); within a bucket the first offered first. Memory: one byte of state per sample, plus (while
-/// the outside grows) two bytes of distance per sample, plus the queues (4 bytes per queued sample).
-/// `threads` (0: one per hardware thread) is used for the distance; the result does not depend on it.
+/// the growths run) two bytes of distance per sample, plus the queues (4 bytes per queued sample).
+/// `threads` (0: one per hardware thread) is used for the distance, and with two or more the two
+/// growths run at once on two threads; the result does not depend on it.
 HandleCut cut_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
 HandleCut cut_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0);
 
@@ -86,7 +87,8 @@ struct HandleRepair {
 /// (undo_handle_repair restores the field). Areas as contour_isosurface(field, level, threads,
 /// minimum_fraction) measures them. Same preconditions and throws as cut_handles. Memory: as
 /// cut_handles, plus the clusters and, per moved membrane, about 20 bytes per sample of a box around it
-/// (boxes above 4M samples are not searched). Deterministic; independent of `threads`.
+/// (boxes above 4M samples are not searched), for each of up to `threads` membranes searched at once.
+/// Deterministic; independent of `threads`.
 HandleRepair repair_handles(Grid3<double>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0,
                             int handles_to_remove = -1);
 HandleRepair repair_handles(Grid3<float>& field, double level, double minimum_fraction = kContourMinimumFraction, int threads = 0,
