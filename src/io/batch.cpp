@@ -292,6 +292,7 @@ const std::vector<ReportColumn>& report_columns_before_repair() {
 const std::vector<ReportColumn>& report_columns_after_repair() {
   static const std::vector<ReportColumn> columns = {
       {"repair_method", {"structure", "topology_repair", "method"}},
+      {"repair_rounds", {"structure", "topology_repair", "rounds"}},
       {"repair_samples_changed", {"structure", "topology_repair", "samples_changed"}},
       {"repair_volume_changed", {"structure", "topology_repair", "volume_changed"}},
       {"repair_area_before", {"structure", "topology_repair", "area_before"}},

@@ -224,6 +224,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
       for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
       const double reach = largest_radius + surface.probe + 2 * surface.grid;
       report.method = fix.method;
+      report.rounds = fix.method == "per-handle" ? fix.rounds : 0;
       report.samples_changed = fix.samples_changed;
       report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
       for (const auto& change : fix.per_handle.changes)
@@ -536,6 +537,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
                             {"warnings", result.structure.warnings},
                             {"topology_repair",
                              {{"method", result.topology.method},
+                              {"rounds", result.topology.rounds},
                               {"samples_changed", result.topology.samples_changed},
                               {"volume_changed", result.topology.volume_changed},
                               {"area_before", result.topology.area_before},

@@ -345,6 +345,8 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   const auto& repair = report["structure"]["topology_repair"];
   EXPECT_EQ(repair["genus_before"], 13);
   EXPECT_EQ(repair["method"], "per-handle");
+  EXPECT_GE(repair["rounds"], 1);
+  EXPECT_LE(repair["rounds"], 4);
   EXPECT_EQ(repair["changes"].size(), 13u);
   for (const auto& change : repair["changes"]) EXPECT_FALSE(change["lining_residues"].empty()) << change;
   const auto& components = report["structure"]["components"];

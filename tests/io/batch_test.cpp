@@ -629,6 +629,8 @@ TEST(DataBatch, PaperStructuresAtThePaperPresetInParallel) {
     EXPECT_GT(row["atoms"].get<int>(), 20) << row.dump();
     EXPECT_GT(row["triangles"].get<int>(), 100) << row.dump();
     EXPECT_FALSE(row["repair_method"].is_null()) << row.dump();
+    // Rounds are counted only for a per-handle repair.
+    EXPECT_EQ(row["repair_rounds"].get<int>() > 0, row["repair_method"] == "per-handle") << row.dump();
   }
   EXPECT_EQ(csv_without_timings(summary_csv(parallel.rows)), csv_without_timings(summary_csv(serial.rows)));
   for (const auto& input : inputs)
