@@ -484,8 +484,8 @@ void grow_outside(const Lattice& lattice, const std::array<std::int64_t, 3>& siz
   }
 }
 
-// Both growths, marked in one state byte per sample (plus, while the outside grows, two bytes of
-// distance per sample). With more than one thread the two growths run at once (see load_state).
+// Both growths, marked in one state byte per sample (plus, while they run, two bytes of distance per
+// sample). With more than one thread the two growths run at once (see load_state).
 template <typename T, typename Index>
 void grow_both_with(const Grid3<T>& field, double level, const Lattice& lattice, std::uint8_t* state, int threads) {
   const std::vector<std::uint16_t> depth = outside_depth(field, level, threads);
