@@ -58,9 +58,9 @@ struct TopologyRepair {
   /// "none"; "per-handle" (each handle cut or each tunnel filled, whichever is smaller); or, when that
   /// does not reach genus 0, the global fallback "fill" (every tunnel filled) or "cut" (every handle cut).
   std::string method = "none";
-  /// Rounds of the per-handle repair, each a pair of growths over the whole grid (another one when
-  /// the changes of a round left a handle, although their Euler characteristic counted it removed);
-  /// 0 for "none" and for the global fallback.
+  /// Rounds of the per-handle repair, each a pair of growths over the whole grid (another one when a
+  /// change of a round enclosed a void or split off a piece, which the Euler characteristic counts like
+  /// a handle removed); 0 for "none" and for the global fallback.
   int rounds = 0;
   std::int64_t samples_changed = 0;
   double volume_changed = 0;      // Å³ (samples changed x grid³)
