@@ -169,26 +169,37 @@ TEST(Handles, CavitiesAndPiecesAreNotHandles) {
   EXPECT_TRUE(repair_handles(grid, 0).changes.empty());
 }
 
+// A random walk of `count` ball centres from the origin, steps of `step_length` in random directions
+// (`step` draws each coordinate), clamped to the cube [-bound, bound]³: the way chains of atoms close loops.
+std::vector<Vec3> random_walk(std::mt19937& random, std::uniform_real_distribution<double>& step, std::size_t count,
+                              double step_length, double bound) {
+  std::vector<Vec3> centres{{0, 0, 0}};
+  while (centres.size() < count) {
+    Vec3 d{step(random), step(random), step(random)};
+    const double length = norm(d);
+    if (length < 0.2) continue;
+    Vec3 next = centres.back() + (step_length / length) * d;
+    for (auto& x : next) x = std::clamp(x, -bound, bound);
+    centres.push_back(next);
+  }
+  return centres;
+}
+
+// The union of balls of `radius` at `centres`: positive inside.
+double necklace(const std::vector<Vec3>& centres, double radius, const Vec3& p) {
+  double best = -1e9;
+  for (const auto& c : centres) best = std::max(best, radius - norm(p - c));
+  return best;
+}
+
 TEST(Handles, RandomNecklacesGetAGenusZeroOuterSurface) {
   // Random walks of overlapping balls, the way chains of atoms close loops: handles of all sizes.
   std::mt19937 random(11);
   std::uniform_real_distribution<double> step(-1.0, 1.0);
   int per_handle = 0, fallback = 0, untouched = 0;
   for (int trial = 0; trial < 16; ++trial) {
-    std::vector<Vec3> centres{{0, 0, 0}};
-    while (centres.size() < 60) {
-      Vec3 d{step(random), step(random), step(random)};
-      const double length = norm(d);
-      if (length < 0.2) continue;
-      Vec3 next = centres.back() + (1.1 / length) * d;
-      for (auto& x : next) x = std::clamp(x, -3.0, 3.0);
-      centres.push_back(next);
-    }
-    auto grid = sample(36, 0.25, {-4.5, -4.5, -4.5}, [&](const Vec3& p) {
-      double best = -1e9;
-      for (const auto& c : centres) best = std::max(best, 0.75 - norm(p - c));
-      return best;
-    });
+    const auto centres = random_walk(random, step, 60, 1.1, 3.0);
+    auto grid = sample(36, 0.25, {-4.5, -4.5, -4.5}, [&](const Vec3& p) { return necklace(centres, 0.75, p); });
     const auto repair = repair_outer_genus(grid, 0);
     const auto components = mesh_components(contour_isosurface(grid, 0));
     ASSERT_FALSE(components.empty());
@@ -211,18 +222,9 @@ TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourIs
   std::uniform_real_distribution<double> step(-1.0, 1.0);
   int repaired = 0;
   for (int trial = 0; trial < 12; ++trial) {
-    std::vector<Vec3> centres{{0, 0, 0}};
-    while (centres.size() < 50) {
-      Vec3 d{step(random), step(random), step(random)};
-      if (norm(d) < 0.2) continue;
-      Vec3 next = centres.back() + (1.0 / norm(d)) * d;
-      for (auto& x : next) x = std::clamp(x, -2.5, 2.5);
-      centres.push_back(next);
-    }
+    const auto centres = random_walk(random, step, 50, 1.0, 2.5);
     auto grid = sample(30, 0.25, {-3.75, -3.75, -3.75}, [&](const Vec3& p) {
-      double best = -1e9;
-      for (const auto& c : centres) best = std::max(best, 0.75 - norm(p - c));
-      return std::round(best * 8) / 8;  // exact in float too
+      return std::round(necklace(centres, 0.75, p) * 8) / 8;  // exact in float too
     });
     Grid3<float> single;
     single.size = grid.size, single.spacing = grid.spacing, single.origin = grid.origin;
@@ -449,20 +451,8 @@ TEST(Handles, ADetachedPieceWithHandlesIsNeitherRepairedNorDeleted) {
 TEST(Handles, RepairsDoNotDependOnTheNumberOfThreadsAndChangesAddUpToTheAreaChange) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> step(-1.0, 1.0);
-  std::vector<Vec3> centres{{0, 0, 0}};
-  while (centres.size() < 60) {
-    Vec3 d{step(random), step(random), step(random)};
-    if (norm(d) < 0.2) continue;
-    Vec3 next = centres.back() + (1.1 / norm(d)) * d;
-    for (auto& x : next) x = std::clamp(x, -3.0, 3.0);
-    centres.push_back(next);
-  }
-  auto necklace = [&](const Vec3& p) {
-    double best = -1e9;
-    for (const auto& c : centres) best = std::max(best, 0.75 - norm(p - c));
-    return best;
-  };
-  auto one = sample(36, 0.25, {-4.5, -4.5, -4.5}, necklace);
+  const auto centres = random_walk(random, step, 60, 1.1, 3.0);
+  auto one = sample(36, 0.25, {-4.5, -4.5, -4.5}, [&](const Vec3& p) { return necklace(centres, 0.75, p); });
   auto two = one, three = one;
   const double before = contour_area(one);
   ASSERT_GT(mesh_components(contour_isosurface(one, 0)).front().genus, 1);
@@ -497,20 +487,9 @@ TEST(Handles, MembraneSearchesFindTheSameCutsWithOrWithoutShortestPathPhases) {
   std::uniform_real_distribution<double> step(-1.0, 1.0);
   int changes = 0;
   for (int trial = 0; trial < 8; ++trial) {
-    std::vector<Vec3> centres{{0, 0, 0}};
-    while (centres.size() < 60) {
-      Vec3 d{step(random), step(random), step(random)};
-      if (norm(d) < 0.2) continue;
-      Vec3 next = centres.back() + (1.2 / norm(d)) * d;
-      for (auto& x : next) x = std::clamp(x, -3.0, 3.0);
-      centres.push_back(next);
-    }
+    const auto centres = random_walk(random, step, 60, 1.2, 3.0);
     const double radius = trial % 2 == 0 ? 0.75 : 0.95;
-    auto grid = sample(36, 0.25, {-4.5, -4.5, -4.5}, [&](const Vec3& p) {
-      double best = -1e9;
-      for (const auto& c : centres) best = std::max(best, radius - norm(p - c));
-      return best;
-    });
+    auto grid = sample(36, 0.25, {-4.5, -4.5, -4.5}, [&](const Vec3& p) { return necklace(centres, radius, p); });
     if (mesh_components(contour_isosurface(grid, 0)).front().genus == 0) continue;
     auto with = grid;
     from = std::numeric_limits<std::int64_t>::max();
