@@ -501,7 +501,7 @@ void grow_both_with(const Grid3<T>& field, double level, const Lattice& lattice,
         }
       });
     } catch (const std::system_error&) {
-      solid_thread.reset();  // no second thread: one growth after the other
+      // No second thread (solid_thread stays empty): one growth after the other.
     }
   }
   if (!solid_thread) grow_solid<T, Index>(field, level, lattice, state);
