@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -171,33 +172,63 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& path) {
   return soup;
 }
 
-void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::string file = path.string();
-  // Same folder as the target, so the rename stays on one file system and is atomic.
-  std::filesystem::path temporary = path;
-  temporary += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
-
-  const auto discard_and_fail = [&](const std::string& problem) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    fail(file, problem, "check that the folder exists, is writable and the disk is not full");
-  };
-
-  std::FILE* stream = std::fopen(temporary.c_str(), "wb");
-  if (stream == nullptr) {
-    fail(file, fmt::format("cannot create '{}' ({})", temporary.string(), std::strerror(errno)),
+AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), temporary_(path_) {
+  temporary_ += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
+  stream_ = std::fopen(temporary_.c_str(), "wb");
+  if (stream_ == nullptr) {
+    fail(path_.string(), fmt::format("cannot create '{}' ({})", temporary_.string(), std::strerror(errno)),
          "check that the folder exists and is writable");
   }
-  const bool written = std::fwrite(text.data(), 1, text.size(), stream) == text.size();
-  const int write_errno = errno;
-  const bool flushed = std::fflush(stream) == 0;
-  const bool closed = std::fclose(stream) == 0;
-  if (!written || !flushed || !closed) {
-    discard_and_fail(fmt::format("cannot write the file ({})", std::strerror(written ? errno : write_errno)));
+}
+
+AtomicFile::~AtomicFile() {
+  if (stream_ == nullptr) return;
+  std::fclose(stream_);
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+}
+
+void AtomicFile::discard_and_fail(const std::string& problem) {
+  if (stream_ != nullptr) std::fclose(stream_);
+  stream_ = nullptr;
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+  fail(path_.string(), problem, "check that the folder exists, is writable and the disk is not full");
+}
+
+void AtomicFile::append(std::string_view bytes) {
+  if (stream_ == nullptr) throw std::logic_error("AtomicFile::append after commit");
+  if (std::fwrite(bytes.data(), 1, bytes.size(), stream_) != bytes.size())
+    discard_and_fail(fmt::format("cannot write the file ({})", std::strerror(errno)));
+}
+
+void AtomicFile::commit() {
+  if (stream_ == nullptr) throw std::logic_error("AtomicFile::commit twice");
+  const bool flushed = std::fflush(stream_) == 0;
+  const int flush_errno = errno;
+  const bool closed = std::fclose(stream_) == 0;
+  const int close_errno = errno;
+  stream_ = nullptr;
+  if (!flushed || !closed) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    fail(path_.string(), fmt::format("cannot write the file ({})", std::strerror(flushed ? close_errno : flush_errno)),
+         "check that the folder exists, is writable and the disk is not full");
   }
   std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) discard_and_fail(fmt::format("cannot rename '{}' to it ({})", temporary.string(), ec.message()));
+  std::filesystem::rename(temporary_, path_, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    fail(path_.string(), fmt::format("cannot rename '{}' to it ({})", temporary_.string(), ec.message()),
+         "check that the folder exists, is writable and the disk is not full");
+  }
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  AtomicFile file(path);
+  file.append(text);
+  file.commit();
 }
 
 }  // namespace spheremap

@@ -1,4 +1,5 @@
-// write_ply: the whole file is built in memory (deterministic bytes), then written atomically.
+// write_ply: the file is built in pieces of about a megabyte (the bytes do not depend on the pieces),
+// each appended to a temporary file that is renamed over the target when complete (AtomicFile).
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -81,12 +82,12 @@ void append_little_endian(std::string& out, T value) {
   out.append(bytes.data(), bytes.size());
 }
 
-void append_binary_body(std::string& out, const Mesh& mesh) {
-  constexpr std::size_t kTriangleBytes = 1 + 3 * sizeof(std::int32_t);
-  out.reserve(out.size() +
-              mesh.positions.size() * (sizeof(double) * (3 + mesh.real_attributes.size()) +
-                                       sizeof(std::int32_t) * mesh.integer_attributes.size()) +
-              mesh.triangles.size() * kTriangleBytes);
+// Bytes are gathered in `out` and handed to `spill` whenever they pass a megabyte: a 0.25 Å surface of
+// GroEL is a 1.8 GB file, which would otherwise stand in memory beside the mesh.
+constexpr std::size_t kSpillBytes = std::size_t{1} << 20;
+
+template <typename Spill>
+void append_binary_body(std::string& out, const Mesh& mesh, Spill&& spill) {
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     for (const double coordinate : mesh.positions[v]) append_little_endian(out, coordinate);
     for (const auto& [name, values] : mesh.real_attributes) append_little_endian(out, values[v]);
@@ -96,14 +97,17 @@ void append_binary_body(std::string& out, const Mesh& mesh) {
       out.push_back(static_cast<char>(value.size()));
       out += value;
     }
+    if (out.size() >= kSpillBytes) spill();
   }
   for (const Triangle& triangle : mesh.triangles) {
     out.push_back(static_cast<char>(3));
     for (const std::int32_t index : triangle) append_little_endian(out, index);
+    if (out.size() >= kSpillBytes) spill();
   }
 }
 
-void append_ascii_body(std::string& out, const Mesh& mesh) {
+template <typename Spill>
+void append_ascii_body(std::string& out, const Mesh& mesh, Spill&& spill) {
   auto sink = std::back_inserter(out);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     const Vec3& p = mesh.positions[v];
@@ -117,21 +121,32 @@ void append_ascii_body(std::string& out, const Mesh& mesh) {
       for (const unsigned char c : value) fmt::format_to(sink, " {}", static_cast<unsigned>(c));
     }
     out.push_back('\n');
+    if (out.size() >= kSpillBytes) spill();
   }
-  for (const Triangle& t : mesh.triangles) fmt::format_to(sink, "3 {} {} {}\n", t[0], t[1], t[2]);
+  for (const Triangle& t : mesh.triangles) {
+    fmt::format_to(sink, "3 {} {} {}\n", t[0], t[1], t[2]);
+    if (out.size() >= kSpillBytes) spill();
+  }
 }
 
 }  // namespace
 
 void write_ply(const std::filesystem::path& path, const Mesh& mesh, const PlyWriteOptions& options) {
   check_writable(mesh);
-  std::string contents = header(mesh, options.ascii);
+  AtomicFile file(path);
+  std::string buffer = header(mesh, options.ascii);
+  buffer.reserve(kSpillBytes + 4096);
+  auto spill = [&] {
+    file.append(buffer);
+    buffer.clear();
+  };
   if (options.ascii) {
-    append_ascii_body(contents, mesh);
+    append_ascii_body(buffer, mesh, spill);
   } else {
-    append_binary_body(contents, mesh);
+    append_binary_body(buffer, mesh, spill);
   }
-  write_file_atomically(path, contents);
+  spill();
+  file.commit();
 }
 
 }  // namespace spheremap

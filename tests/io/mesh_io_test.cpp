@@ -233,6 +233,59 @@ TEST_F(PlyWriter, AtomicWriteLeavesOnlyTheTargetFile) {
   EXPECT_EQ(read_polygon_soup(folder_ / "old.ply").positions.size(), 4U);
 }
 
+TEST_F(PlyWriter, FilesOfManyMegabytesAreWrittenInPiecesWithNothingLostOrRepeated) {
+  // 200,000 vertices with varying text lengths: several megabytes, binary and ASCII, so that pieces end
+  // mid-vertex, mid-text and mid-face.
+  Mesh mesh;
+  const std::int32_t n = 200'000;
+  for (std::int32_t v = 0; v < n; ++v) mesh.positions.push_back({v / 3.0, -v / 7.0, std::sqrt(static_cast<double>(v))});
+  for (std::int32_t v = 0; v + 2 < n; v += 3) mesh.triangles.push_back({v, v + 1, v + 2});
+  mesh.integer_attributes["label"].resize(static_cast<std::size_t>(n));
+  mesh.text_attributes["name"] = TextAttribute{{"", "N", "CA", "OXT", "HE21"}, {}};
+  for (std::int32_t v = 0; v < n; ++v) {
+    mesh.integer_attributes["label"][static_cast<std::size_t>(v)] = v * 7 - 5;
+    mesh.text_attributes["name"].codes.push_back(v % 5);
+  }
+  for (const bool ascii : {false, true}) {
+    const fs::path path = folder_ / (ascii ? "large-ascii.ply" : "large.ply");
+    write_ply(path, mesh, {.ascii = ascii});
+    const std::string bytes = read_bytes(path);
+    EXPECT_GT(bytes.size(), std::size_t{3} << 20);
+    const std::size_t body = bytes.find("end_header\n") + 11;
+    if (!ascii) {
+      // Per vertex: x y z, the label, a length byte and the text (0 to 4 bytes, 2 on average); per face 13.
+      EXPECT_EQ(bytes.size(), body + static_cast<std::size_t>(n) * (3 * 8 + 4 + 1 + 2) + mesh.triangles.size() * 13);
+    } else {
+      EXPECT_EQ(static_cast<std::size_t>(std::count(bytes.begin() + static_cast<std::ptrdiff_t>(body), bytes.end(), '\n')),
+                static_cast<std::size_t>(n) + mesh.triangles.size());
+    }
+    const PolygonSoup soup = read_polygon_soup(path);
+    expect_positions_bit_exact(soup.positions, mesh.positions);
+    EXPECT_EQ(soup.faces, faces_of(mesh));
+  }
+}
+
+TEST_F(PlyWriter, AnAtomicFileLeftUncommittedLeavesTheTargetAsItWas) {
+  write(std::string("kept.txt"), "previous contents");
+  {
+    AtomicFile file(folder_ / "kept.txt");
+    file.append("new contents, not committed");
+  }
+  {
+    AtomicFile file(folder_ / "new.txt");
+    file.append("half");
+  }
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
+  EXPECT_EQ(names, (std::vector<std::string>{"kept.txt"}));
+  EXPECT_EQ(read_bytes(folder_ / "kept.txt"), "previous contents");
+  AtomicFile file(folder_ / "kept.txt");
+  file.append("new ");
+  file.append("contents");
+  file.commit();
+  EXPECT_EQ(read_bytes(folder_ / "kept.txt"), "new contents");
+}
+
 TEST_F(PlyWriter, UnwritableTargetThrowsInputErrorAndLeavesNoTemporaryFile) {
   const fs::path path = folder_ / "missing_folder" / "out.ply";
   EXPECT_THROW(write_ply(path, tetrahedron_with_attributes()), InputError);

@@ -1,8 +1,10 @@
 // Reading and writing mesh files (stage: io).
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "spheremap/mesh.hpp"
 
@@ -31,5 +33,25 @@ void write_ply(const std::filesystem::path& path, const Mesh& mesh, const PlyWri
 /// Writes `text` to `path` atomically (temporary file in the same folder, then rename).
 /// Throws InputError if it cannot.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+
+/// A file written in pieces under a temporary name beside `path` (`<path>.tmp-<pid>`, the same folder, so
+/// that the rename is atomic) and renamed over `path` by commit(): a reader never sees a partial file,
+/// and an AtomicFile destroyed before commit() (an exception on the way) removes what it wrote. For
+/// outputs too large to hold whole in memory (a 0.25 Å surface of GroEL is a 1.8 GB PLY).
+/// The constructor, append() and commit() throw InputError naming the file if it cannot be written.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::filesystem::path path);
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+  void append(std::string_view bytes);
+  void commit();
+
+ private:
+  [[noreturn]] void discard_and_fail(const std::string& problem);
+  std::filesystem::path path_, temporary_;
+  std::FILE* stream_ = nullptr;
+};
 
 }  // namespace spheremap
