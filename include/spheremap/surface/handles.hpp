@@ -80,10 +80,11 @@ struct HandleRepair {
 ///   (binary search), so that no expensive change is bought for a count beyond the genus, which only
 ///   enclosed voids or split-off pieces can make up.
 /// - Chosen clusters are applied cheapest first, each only if it still raises the Euler characteristic on
-///   the field as it then is, until `handles_to_remove` are removed; the others complete the count if a
-///   chosen one did not.
-/// A change that encloses a void or splits off a piece also raises the Euler characteristic: the caller
-/// must check the genus of the result (repair_outer_genus does, and repeats) and fall back to cut_handles
+///   the field as it then is and does not split off a piece or close a pocket into a void (which raises
+///   it too, but removes no handle; searched breadth first up to 500 Å³ of samples around the change),
+///   until `handles_to_remove` are removed; the others complete the count if a chosen one did not.
+/// A change that splits off a larger piece also raises the Euler characteristic: the caller must check
+/// the genus of the result (repair_outer_genus does, and repeats) and fall back to cut_handles
 /// (undo_handle_repair restores the field). Areas as contour_isosurface(field, level, threads,
 /// minimum_fraction) measures them. Same preconditions and throws as cut_handles. Memory: as
 /// cut_handles, plus the clusters and, per moved membrane, about 20 bytes per sample of a box around it
