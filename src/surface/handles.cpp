@@ -583,8 +583,9 @@ int euler_change(const Grid3<T>& field, double level, const std::vector<std::int
 // handle does, but removes none. The side left is searched breadth first from every sample next to the
 // change, one label per start, labels joined where their searches meet (union-find); a label all of whose
 // samples are searched while other labels remain is a piece apart. Everything beyond the grid belongs to
-// the outside. After `budget` samples the search stops and the change counts as harmless: a larger piece
-// is left to the next round of repair_outer_genus, as before this check.
+// the outside. After `budget` samples searched (or twice as many found) besides those next to the change,
+// the search stops and the change counts as harmless: a larger piece is left to the next round of
+// repair_outer_genus, as before this check.
 template <typename T>
 bool splits_its_side(const Lattice& lattice, const T* values, double level, const std::vector<std::int64_t>& moved,
                      bool left_inside, std::int64_t budget) {

@@ -23,7 +23,8 @@ inline std::int64_t& membrane_shortest_paths_from() {
 /// a removed handle does, and removes none. `samples`: ascending grid indices, all on the side of `level`
 /// that `filled` says (above it when filled, at or below it when cut) in `field`, and before the change
 /// all on the other side. Everything beyond the grid counts as outside. The search stops after `budget`
-/// samples and then answers false (a piece larger than about budget/2 samples is not found).
+/// samples searched, or twice as many found, besides those next to the change, and then answers false (a
+/// piece larger than about budget/2 samples is not found).
 bool change_splits_its_side(const Grid3<double>& field, double level, const std::vector<std::int64_t>& samples, bool filled,
                             std::int64_t budget);
 
