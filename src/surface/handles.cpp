@@ -1335,7 +1335,7 @@ constexpr double kMembraneReach = 4.0;
 // How far (Å³ of samples) the check for a change that splits off a piece (splits_its_side) searches
 // before it gives up: the piece GroEL's first round split off at 0.5 Å measured 16.7 Å³. The check costs
 // 9 ms of 5hr7's 0.67 s repair at 0.5 Å and 0.12 s of GroEL's; 20,000 Å³ found one more piece in GroEL
-// at 0.25 Å, but the repair then took 308 s instead of 130 s, and still two rounds.
+// at 0.25 Å, but the repair then took 308 s instead of about 120 s, and still two rounds.
 constexpr double kSplitSearchVolume = 500.0;
 
 // The best set of clusters when each has a value (weight, possibly negative) and some pairs of a cut
@@ -1637,7 +1637,7 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
     // ring, the second of two fills across one pipe. It is not applied: it would drop the piece or the
     // pocket's lining from the outer surface and leave the handle it was counted for, which the clusters
     // not chosen then remove if they can (else the next round). Among the 88 structures: GroEL at 0.5 Å
-    // (a cut; it needed a second round of growths before) and 1vln at 1 Å (a fill).
+    // (a cut; it needed a second round of growths before), 3o21 at 0.25 Å (a cut) and 1vln at 1 Å (a fill).
     if (splits_its_side(lattice, values, level, change.samples, !change.filled, split_search_budget)) {
       for (std::size_t k = 0; k < change.samples.size(); ++k) values[change.samples[k]] = static_cast<T>(change.original_values[k]);
       change.original_values.clear();
