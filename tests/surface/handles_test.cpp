@@ -199,7 +199,7 @@ TEST(Handles, ASecondCutAcrossARingSplitsItAndIsToldFromACutThatRemovesItsHandle
   const auto second = move_across(grid, true, [](const Vec3& p) { return std::abs(p[0]) < 0.3 && p[1] < 0; });
   ASSERT_FALSE(second.empty());
   EXPECT_TRUE(detail::change_splits_its_side(grid, 0, second, false, kUnlimited));
-  // Each half holds about 1,200 samples: a search limited to 100 gives up and calls the change harmless.
+  // Each half holds about 1,600 samples: a search limited to 100 gives up and calls the change harmless.
   EXPECT_FALSE(detail::change_splits_its_side(grid, 0, second, false, 100));
 }
 
