@@ -1337,6 +1337,9 @@ constexpr double kMembraneReach = 4.0;
 // 9 ms of 5hr7's 0.67 s repair at 0.5 Å and 0.12 s of GroEL's; 20,000 Å³ found one more piece in GroEL
 // at 0.25 Å, but the repair then took 308 s instead of about 120 s, and still two rounds.
 constexpr double kSplitSearchVolume = 500.0;
+// ... and at most this many samples (500 Å³ at grids of 0.08 Å and coarser): the search's table and queue,
+// about 80 bytes per sample of the budget, stay near 80 MB at the finest grids the command line accepts.
+constexpr std::int64_t kSplitSearchMostSamples = std::int64_t{1} << 20;
 
 // The best set of clusters when each has a value (weight, possibly negative) and some pairs of a cut
 // and a fill lose value when both are chosen (penalty >= 0): maximise the chosen weights minus the
@@ -1619,7 +1622,8 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
   // split off pieces (a connected solid without voids has an Euler characteristic of at most 1).
   int goal = removes, removed = 0;
   if (handles_to_remove >= 0) goal = std::min(goal, handles_to_remove);
-  const auto split_search_budget = static_cast<std::int64_t>(std::ceil(kSplitSearchVolume / std::pow(field.spacing, 3)));
+  const auto split_search_budget = std::min<std::int64_t>(
+      static_cast<std::int64_t>(std::ceil(kSplitSearchVolume / std::pow(field.spacing, 3))), kSplitSearchMostSamples);
   for (const int h : order) {
     if (removed >= goal) break;
     auto& c = candidates[static_cast<std::size_t>(handle_of[static_cast<std::size_t>(h)])];
