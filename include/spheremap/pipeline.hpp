@@ -59,8 +59,9 @@ struct TopologyRepair {
   /// does not reach genus 0, the global fallback "fill" (every tunnel filled) or "cut" (every handle cut).
   std::string method = "none";
   /// Rounds of the per-handle repair, each a pair of growths over the whole grid (another one when a
-  /// change of a round enclosed a void or split off a piece, which the Euler characteristic counts like
-  /// a handle removed); 0 for "none" and for the global fallback.
+  /// round left handles: a change that split off a piece larger than the repair's search counts like a
+  /// handle removed, and the clusters not chosen may not stand in for a change skipped); 0 for "none"
+  /// and for the global fallback.
   int rounds = 0;
   std::int64_t samples_changed = 0;
   double volume_changed = 0;      // Å³ (samples changed x grid³)

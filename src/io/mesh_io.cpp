@@ -209,20 +209,10 @@ void AtomicFile::commit() {
   const bool closed = std::fclose(stream_) == 0;
   const int close_errno = errno;
   stream_ = nullptr;
-  if (!flushed || !closed) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary_, ignored);
-    fail(path_.string(), fmt::format("cannot write the file ({})", std::strerror(flushed ? close_errno : flush_errno)),
-         "check that the folder exists, is writable and the disk is not full");
-  }
+  if (!flushed || !closed) discard_and_fail(fmt::format("cannot write the file ({})", std::strerror(flushed ? close_errno : flush_errno)));
   std::error_code ec;
   std::filesystem::rename(temporary_, path_, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary_, ignored);
-    fail(path_.string(), fmt::format("cannot rename '{}' to it ({})", temporary_.string(), ec.message()),
-         "check that the folder exists, is writable and the disk is not full");
-  }
+  if (ec) discard_and_fail(fmt::format("cannot rename '{}' to it ({})", temporary_.string(), ec.message()));
 }
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& text) {

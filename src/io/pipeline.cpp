@@ -224,7 +224,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
       for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
       const double reach = largest_radius + surface.probe + 2 * surface.grid;
       report.method = fix.method;
-      report.rounds = fix.method == "per-handle" ? fix.rounds : 0;
+      report.rounds = fix.rounds;  // 0 unless "per-handle"
       report.samples_changed = fix.samples_changed;
       report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
       for (const auto& change : fix.per_handle.changes)

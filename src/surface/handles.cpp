@@ -1484,7 +1484,7 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
   const int reach = std::max(2, static_cast<int>(std::lround(kMembraneReach / field.spacing)));
   std::vector<std::vector<std::int64_t>> moved_of(candidates.size());
   {
-    std::vector<std::unique_ptr<MembraneMover>> movers(static_cast<std::size_t>(detail::surface_threads(threads)));
+    std::vector<std::unique_ptr<MembraneMover>> movers(static_cast<std::size_t>(threads));
     detail::parallel_chunks(static_cast<std::int64_t>(candidates.size()), threads, [&](std::int64_t k, int worker) {
       const auto& c = candidates[static_cast<std::size_t>(k)];
       if (c.euler <= 0) return;
