@@ -179,7 +179,9 @@ std::vector<std::int32_t> nested_dissection_order(const Eigen::SparseMatrix<doub
 // Debian's CHOLMOD opens an OpenMP parallel region (with a fixed thread count that OMP_NUM_THREADS does
 // not lower) for every supernode: on a 400k-vertex surface that is 170,000 thread wake-ups, 30% of the
 // factorization's wall time, and a second busy core that a parallel batch needs. No active parallel
-// level makes every such region run on the calling thread. We use no OpenMP ourselves.
+// level makes every such region run on the calling thread. We use no OpenMP ourselves. (libgomp still
+// makes a team of one and a barrier system call per region: the command and the benchmarks link
+// cli/serial_openmp.cpp, which runs regions without them.)
 void keep_openmp_serial() {
   static std::once_flag once;
   std::call_once(once, [] { omp_set_max_active_levels(0); });
