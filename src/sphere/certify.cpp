@@ -1,6 +1,7 @@
 #include "spheremap/sphere/certify.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -9,6 +10,7 @@
 
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "../surface/parallel.hpp"
 
 namespace spheremap {
 namespace {
@@ -81,41 +83,56 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
                                 std::to_string(surface.positions.size()) + " surface vertices");
 
   Certificate certificate;
-  certificate.triangle_count = static_cast<std::int64_t>(surface.triangles.size());
+  const std::size_t count = surface.triangles.size();
+  certificate.triangle_count = static_cast<std::int64_t>(count);
   certificate.collapse_floor = collapse_floor;
 
+  // The per-triangle work (solid angle, exact orientation, surface area) on every hardware thread, in
+  // fixed chunks; the sums and lists after it in triangle order, so the result does not depend on the
+  // thread count.
+  std::vector<double> own_solid_angles;
+  std::vector<double>& omega = solid_angles ? *solid_angles : own_solid_angles;
+  omega.resize(count);
+  std::vector<double> area(count);
+  constexpr std::uint8_t kPositive = 1, kDecidedExactly = 2;
+  std::vector<std::uint8_t> verdict(count);
+  constexpr std::size_t kChunk = 16384;
+  const auto chunks = static_cast<std::int64_t>((count + kChunk - 1) / kChunk);
+  detail::parallel_chunks(chunks, detail::surface_threads(0), [&](std::int64_t chunk, int) {
+    const std::size_t first = static_cast<std::size_t>(chunk) * kChunk, last = std::min(count, first + kChunk);
+    for (std::size_t index = first; index < last; ++index) {
+      const auto& t = surface.triangles[index];
+      const Vec3& a = sphere[t[0]];
+      const Vec3& b = sphere[t[1]];
+      const Vec3& c = sphere[t[2]];
+      omega[index] = signed_solid_angle(a, b, c);
+      bool decided_exactly = false;
+      const int orientation = orientation_sign(a, b, c, &decided_exactly);
+      verdict[index] = static_cast<std::uint8_t>((orientation > 0 ? kPositive : 0) | (decided_exactly ? kDecidedExactly : 0));
+      area[index] = triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]);
+    }
+  });
+
   CompensatedSum surface_area;
-  for (const auto& t : surface.triangles)
-    surface_area.add(triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]));
+  for (const double a : area) surface_area.add(a);
   const double total_surface_area = surface_area.value();
 
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   constexpr double kFullSphere = 4 * std::numbers::pi;
   CompensatedSum solid_angle;
-  if (solid_angles) solid_angles->resize(surface.triangles.size());
   double min_area_ratio = kInfinity;
   bool any_positive = false;
-  for (std::size_t index = 0; index < surface.triangles.size(); ++index) {
-    const auto& t = surface.triangles[index];
-    const Vec3& a = sphere[t[0]];
-    const Vec3& b = sphere[t[1]];
-    const Vec3& c = sphere[t[2]];
-    const double omega = signed_solid_angle(a, b, c);
-    solid_angle.add(omega);
-    if (solid_angles) (*solid_angles)[index] = omega;
-
-    bool decided_exactly = false;
-    const int orientation = orientation_sign(a, b, c, &decided_exactly);
-    if (decided_exactly) ++certificate.decided_exactly;
-    if (orientation <= 0) {
+  for (std::size_t index = 0; index < count; ++index) {
+    solid_angle.add(omega[index]);
+    if (verdict[index] & kDecidedExactly) ++certificate.decided_exactly;
+    if (!(verdict[index] & kPositive)) {
       certificate.folded_triangles.push_back(static_cast<std::int32_t>(index));
       continue;
     }
     any_positive = true;
     // A triangle with no area on the surface has no fair share of the sphere to fall short of, so
     // its ratio is +inf and it is never collapsed (it also keeps this loop free of 0/0).
-    const double area = triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]);
-    const double ratio = area > 0 ? (omega / kFullSphere) / (area / total_surface_area) : kInfinity;
+    const double ratio = area[index] > 0 ? (omega[index] / kFullSphere) / (area[index] / total_surface_area) : kInfinity;
     min_area_ratio = std::min(min_area_ratio, ratio);
     if (ratio < collapse_floor) certificate.collapsed_triangles.push_back(static_cast<std::int32_t>(index));
   }

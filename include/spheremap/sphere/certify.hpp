@@ -36,6 +36,7 @@ struct Certificate {
 /// Preconditions: sphere.size() == surface.positions.size(); triangle indices valid; finite values.
 /// Throws std::invalid_argument if the sizes disagree. `solid_angles`, if given, receives each
 /// triangle's signed_solid_angle (the terms of total_solid_angle), for callers that need them too.
+/// The triangles are checked on every hardware thread; the result does not depend on how many there are.
 Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sphere,
                                double collapse_floor = kDefaultCollapseFloor, std::vector<double>* solid_angles = nullptr);
 
