@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "spheremap/geometry/vec.hpp"
+#include "../surface/parallel.hpp"
 
 namespace spheremap {
 namespace {
@@ -149,6 +150,7 @@ class Surface {
     }
     merged_into_.assign(static_cast<std::size_t>(vertices), kDead);
     quality_.resize(tri_.size());
+    unflippable_.assign(tri_.size(), 0);
     for (std::size_t t = 0; t < tri_.size(); ++t) quality_[t] = triangle_cosine(static_cast<std::int32_t>(t));
     kept_.assign(static_cast<std::size_t>(vertices), false);
     for (const auto v : options.kept_vertices) {
@@ -227,6 +229,16 @@ class Surface {
   // worst_corner_cosine of triangle t.
   [[nodiscard]] double triangle_cosine(std::int32_t t) const {
     return worst_corner_cosine(p_[tri_[t][0]], p_[tri_[t][1]], p_[tri_[t][2]]);
+  }
+
+  // Triangle t changed (its corners, or what lies across its edges): its edges may flip again, seen
+  // from either side.
+  void forget_unflippable(std::int32_t t) {
+    unflippable_[t] = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t across = opp_[3 * t + k];
+      unflippable_[across / 3] &= static_cast<std::uint8_t>(~(1u << (across % 3)));
+    }
   }
 
   // normal . reference >= cos(max turn) |normal| |reference|, without square roots (the turn is below 90
@@ -366,6 +378,7 @@ class Surface {
       if (t == t1 || t == t2) continue;
       tri_[t][f % 3] = v;
       quality_[t] = triangle_cosine(t);
+      forget_unflippable(t);  // after the gluing: x1 and y2 (outside the fan) are across from y1 and x2 in it
     }
     // y1 now runs v -> a, x1 a -> v, x2 b -> v: valid leaving half-edges for v, a and b.
     out_[v] = y1, out_[from(x1)] = x1, out_[from(x2)] = x2, out_[u] = kDead;
@@ -379,12 +392,17 @@ class Surface {
   // existing edge.
   bool flip_if_better(std::int32_t h) {
     const std::int32_t back = opp_[h];
+    const std::uint8_t bit = static_cast<std::uint8_t>(1u << (h % 3));
+    if (unflippable_[h / 3] & bit) return false;
     const std::int32_t a = from(h), b = to(h), c = apex(h), d = apex(back);
     if (c == d) return false;
     const Vec3 &pa = p_[a], &pb = p_[b], &pc = p_[c], &pd = p_[d];
     const double old_worst = std::max(worst_corner_cosine(pa, pb, pc), worst_corner_cosine(pb, pa, pd));
     const double new_worst = std::max(worst_corner_cosine(pc, pa, pd), worst_corner_cosine(pd, pb, pc));
-    if (!(new_worst < old_worst - 1e-9)) return false;
+    if (!(new_worst < old_worst - 1e-9)) {
+      unflippable_[h / 3] |= bit;
+      return false;
+    }
     if (degree(a) < 4 || degree(b) < 4 || half_edge(c, d) != kDead) return false;
     // The quad's vector area is the same before and after: both new triangles must face within the
     // allowed turn of it.
@@ -404,6 +422,7 @@ class Surface {
     auto link = [&](std::int32_t x, std::int32_t y) { opp_[x] = y, opp_[y] = x; };
     link(3 * t1 + 0, ca), link(3 * t1 + 1, ad), link(3 * t1 + 2, 3 * t2 + 2);
     link(3 * t2 + 0, db), link(3 * t2 + 1, bc);
+    forget_unflippable(t1), forget_unflippable(t2);
     out_[a] = 3 * t1 + 1, out_[b] = 3 * t2 + 1, out_[c] = 3 * t1 + 0, out_[d] = 3 * t2 + 0;
     return true;
   }
@@ -431,44 +450,57 @@ class Surface {
       const double ratio = std::min(1.0, static_cast<double>(static_cast<float>(squared_length)) / low_squared);
       return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
     };
-    std::vector<Candidate> candidates;
-    std::vector<std::pair<std::uint8_t, Candidate>> block;  // length class, edge
-    for (std::int32_t first = 0; first < static_cast<std::int32_t>(tri_.size()); first += kBlockTriangles) {
-      block.clear();
-      const std::int32_t last = std::min(static_cast<std::int32_t>(tri_.size()), first + kBlockTriangles);
-      for (std::int32_t t = first; t < last; ++t) {
-        if (!alive_triangle(t)) continue;
-        // Every edge of a triangle with a corner below min_angle_degrees is a candidate too, whatever its
-        // length: a sliver whose short edges are long already (a vertex almost on the opposite edge, often
-        // of degree 3, which no flip can remove) goes only by a collapse.
-        const bool sliver = quality_[t] > cos_min_angle_;
-        for (int k = 0; k < 3; ++k) {
-          const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
-          const double squared_length = squared_distance(p_[a], p_[b]);
-          if ((a < b && squared_length < low_squared) || (sliver && squared_length >= low_squared))
-            block.push_back({static_cast<std::uint8_t>(length_class(squared_length)), {std::min(a, b), std::max(a, b)}});
+    // Blocks are read in groups of kBlocksPerGroup on every thread, each group's candidates in a list of
+    // its own: the lists, in group order, are what one thread reading the blocks in order would make.
+    constexpr std::int32_t kBlocksPerGroup = 16;
+    const auto triangle_count = static_cast<std::int32_t>(tri_.size());
+    const std::int64_t blocks = (static_cast<std::int64_t>(triangle_count) + kBlockTriangles - 1) / kBlockTriangles;
+    const std::int64_t groups = (blocks + kBlocksPerGroup - 1) / kBlocksPerGroup;
+    std::vector<std::vector<Candidate>> candidate_groups(static_cast<std::size_t>(groups));
+    detail::parallel_chunks(groups, threads_, [&](std::int64_t group, int) {
+      auto& candidates = candidate_groups[static_cast<std::size_t>(group)];
+      std::vector<std::pair<std::uint8_t, Candidate>> block;  // length class, edge
+      const std::int64_t last_block = std::min(blocks, (group + 1) * kBlocksPerGroup);
+      for (std::int64_t block_index = group * kBlocksPerGroup; block_index < last_block; ++block_index) {
+        const auto first = static_cast<std::int32_t>(block_index * kBlockTriangles);
+        block.clear();
+        const std::int32_t last = std::min(triangle_count, first + kBlockTriangles);
+        for (std::int32_t t = first; t < last; ++t) {
+          if (!alive_triangle(t)) continue;
+          // Every edge of a triangle with a corner below min_angle_degrees is a candidate too, whatever its
+          // length: a sliver whose short edges are long already (a vertex almost on the opposite edge, often
+          // of degree 3, which no flip can remove) goes only by a collapse.
+          const bool sliver = quality_[t] > cos_min_angle_;
+          for (int k = 0; k < 3; ++k) {
+            const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
+            const double squared_length = squared_distance(p_[a], p_[b]);
+            if ((a < b && squared_length < low_squared) || (sliver && squared_length >= low_squared))
+              block.push_back({static_cast<std::uint8_t>(length_class(squared_length)), {std::min(a, b), std::max(a, b)}});
+          }
         }
+        std::array<std::size_t, kClasses + 1> start{};
+        for (const auto& [length, edge] : block) ++start[static_cast<std::size_t>(length) + 1];
+        for (int k = 0; k < kClasses; ++k) start[k + 1] += start[k];
+        const std::size_t offset = candidates.size();
+        candidates.resize(offset + block.size());
+        for (const auto& [length, edge] : block) candidates[offset + start[length]++] = edge;
       }
-      std::array<std::size_t, kClasses + 1> start{};
-      for (const auto& [length, edge] : block) ++start[static_cast<std::size_t>(length) + 1];
-      for (int k = 0; k < kClasses; ++k) start[k + 1] += start[k];
-      const std::size_t offset = candidates.size();
-      candidates.resize(offset + block.size());
-      for (const auto& [length, edge] : block) candidates[offset + start[length]++] = edge;
-    }
+    });
     std::array<Workspace, 2> zone_work;
     for (auto& w : zone_work) w.removed_in.assign(component_size_.size(), 0);
     auto run_zone = [&](int zone) {
       auto& w = zone_work[static_cast<std::size_t>(zone)];
-      for (const auto& c : candidates) {
-        if (zone_[c.a] != zone) continue;
-        if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
-        if (zone_[c.b] != zone) {
-          w.deferred.push_back(c);
-          continue;
+      for (const auto& candidates : candidate_groups) {
+        for (const auto& c : candidates) {
+          if (zone_[c.a] != zone) continue;
+          if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
+          if (zone_[c.b] != zone) {
+            w.deferred.push_back(c);
+            continue;
+          }
+          const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
+          if (try_collapse(c.a, c.b, !short_edge, w, zone) == Outcome::kDeferred) w.deferred.push_back(c);
         }
-        const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
-        if (try_collapse(c.a, c.b, !short_edge, w, zone) == Outcome::kDeferred) w.deferred.push_back(c);
       }
     };
     if (threads_ > 1) {
@@ -598,6 +630,11 @@ class Surface {
   std::vector<std::int64_t> component_size_;
   std::vector<bool> kept_;
   std::vector<double> quality_;  // worst_corner_cosine of each triangle, kept up to date
+  // Bit k of triangle t: the edge of half-edge 3t + k, evaluated by flip_if_better, did not pass its
+  // angle test, and neither triangle on it has changed since. Positions never move, so the test would
+  // fail again: the flip passes skip it. One byte per triangle; the parallel collapse zones write only
+  // the bytes of triangles with two corners in their own zone, never the same byte.
+  std::vector<std::uint8_t> unflippable_;
   std::vector<std::int8_t> zone_;
   std::vector<std::int64_t> zone_budget_;
   int threads_ = 1;
