@@ -585,7 +585,9 @@ class Surface {
         while (!alive_vertex(r)) r = merged_into_[r];
         const Vec3& point = p_[x];
         double nearest = INFINITY, closest_vertex = squared_distance(point, p_[r]);
-        for (int steps = 0; steps < 16; ++steps) {
+        // A vertex already as near as the largest so far cannot raise it: the rest of its walk is skipped.
+        bool settled = false;
+        for (int steps = 0; steps < 16 && !settled; ++steps) {
           std::int32_t g = out_[r], next = kDead;
           do {
             const std::int32_t w = to(g);
@@ -594,9 +596,11 @@ class Surface {
             if (d < closest_vertex) closest_vertex = d, next = w;
             g = rotate(g);
           } while (g != out_[r]);
+          settled = nearest <= largest;
           if (next == kDead) break;
           r = next;
         }
+        if (settled) continue;
         // The point may lie over a triangle just outside the fan of its nearest vertex: those across
         // the fan's outer edges count too.
         std::int32_t g = out_[r];
