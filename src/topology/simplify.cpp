@@ -13,6 +13,7 @@
 
 #include "spheremap/geometry/vec.hpp"
 #include "../surface/parallel.hpp"
+#include "simplify_tuning.hpp"
 
 namespace spheremap {
 namespace {
@@ -151,6 +152,7 @@ class Surface {
     merged_into_.assign(static_cast<std::size_t>(vertices), kDead);
     quality_.resize(tri_.size());
     unflippable_.assign(tri_.size(), 0);
+    skip_unflippable_ = detail::simplify_skips_known_unflippable_edges();
     for (std::size_t t = 0; t < tri_.size(); ++t) quality_[t] = triangle_cosine(static_cast<std::int32_t>(t));
     kept_.assign(static_cast<std::size_t>(vertices), false);
     for (const auto v : options.kept_vertices) {
@@ -393,7 +395,7 @@ class Surface {
   bool flip_if_better(std::int32_t h) {
     const std::int32_t back = opp_[h];
     const std::uint8_t bit = static_cast<std::uint8_t>(1u << (h % 3));
-    if (unflippable_[h / 3] & bit) return false;
+    if ((unflippable_[h / 3] & bit) && skip_unflippable_) return false;
     const std::int32_t a = from(h), b = to(h), c = apex(h), d = apex(back);
     if (c == d) return false;
     const Vec3 &pa = p_[a], &pb = p_[b], &pc = p_[c], &pd = p_[d];
@@ -639,6 +641,7 @@ class Surface {
   // fail again: the flip passes skip it. One byte per triangle; the parallel collapse zones write only
   // the bytes of triangles with two corners in their own zone, never the same byte.
   std::vector<std::uint8_t> unflippable_;
+  bool skip_unflippable_ = true;  // detail::simplify_skips_known_unflippable_edges() when made
   std::vector<std::int8_t> zone_;
   std::vector<std::int64_t> zone_budget_;
   int threads_ = 1;
