@@ -157,14 +157,18 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
 
   // Fan triangulation from the first corner whose diagonals are not edges already: a fan whose
   // diagonal duplicates an existing edge would make that edge non-manifold (seen on ajc_beast.obj).
+  // (Only polygons need it: a mesh of triangles, such as every molecular surface, skips the table.)
   std::unordered_set<std::uint64_t> edges_in_use;
   auto edge_key = [](std::int32_t a, std::int32_t b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
            static_cast<std::uint32_t>(std::max(a, b));
   };
-  for (const auto& face : faces) {
-    for (std::size_t k = 0; k < face.size(); ++k)
-      edges_in_use.insert(edge_key(representative[face[k]], representative[face[(k + 1) % face.size()]]));
+  const bool any_polygon = std::any_of(faces.begin(), faces.end(), [](const auto& face) { return face.size() > 3; });
+  if (any_polygon) {
+    for (const auto& face : faces) {
+      for (std::size_t k = 0; k < face.size(); ++k)
+        edges_in_use.insert(edge_key(representative[face[k]], representative[face[(k + 1) % face.size()]]));
+    }
   }
   std::vector<Triangle> triangles;
   triangles.reserve(faces.size() * 2);
@@ -304,13 +308,12 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
   std::vector<std::int32_t> component_of_face(triangles.size());
   std::vector<std::int64_t> component_sizes;
   {
-    std::unordered_map<std::int64_t, std::int32_t> number_of_root;
+    std::vector<std::int32_t> number_of_root(triangles.size(), -1);  // roots are face indices
     for (std::size_t f = 0; f < triangles.size(); ++f) {
-      const auto root = face_components.find(static_cast<std::int64_t>(f));
-      auto [it, inserted] = number_of_root.emplace(root, static_cast<std::int32_t>(component_sizes.size()));
-      if (inserted) component_sizes.push_back(0);
-      component_of_face[f] = it->second;
-      ++component_sizes[it->second];
+      auto& number = number_of_root[static_cast<std::size_t>(face_components.find(static_cast<std::int64_t>(f)))];
+      if (number < 0) number = static_cast<std::int32_t>(component_sizes.size()), component_sizes.push_back(0);
+      component_of_face[f] = number;
+      ++component_sizes[static_cast<std::size_t>(number)];
     }
   }
   report.components = static_cast<std::int64_t>(component_sizes.size());
