@@ -130,8 +130,9 @@ struct Triangulated {
   std::vector<std::int32_t> original_vertex;
 };
 
-PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions,
-                               const std::vector<std::vector<std::int32_t>>& faces,
+// Faces: a vector of polygons (a file's soup) or of Triangles (a Mesh, without a copy per face).
+template <typename Faces>
+PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions, const Faces& faces,
                                const PrepareOptions& options, const Mesh* attributes_from) {
   const std::string& name = options.source_name;
   PrepareReport report;
@@ -464,10 +465,7 @@ PreparedMesh prepare_mesh(const PolygonSoup& soup, const PrepareOptions& options
 }
 
 PreparedMesh prepare_mesh(const Mesh& mesh, const PrepareOptions& options) {
-  std::vector<std::vector<std::int32_t>> faces;
-  faces.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles) faces.push_back({t[0], t[1], t[2]});
-  return prepare_triangles(mesh.positions, faces, options, &mesh);
+  return prepare_triangles(mesh.positions, mesh.triangles, options, &mesh);
 }
 
 }  // namespace spheremap
