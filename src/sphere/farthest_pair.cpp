@@ -2,6 +2,7 @@
 // vertices all lie on a sphere (where the convex hull has every vertex).
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include "spheremap/geometry/vec.hpp"
@@ -20,8 +21,11 @@ constexpr std::int32_t kLeafSize = 8;
 
 class KdTree {
  public:
-  explicit KdTree(const std::vector<Vec3>& points) : points_(points), order_(points.size()) {
-    std::iota(order_.begin(), order_.end(), 0);
+  // The points are copied with their indices and permuted in place, so that building and searching read
+  // them contiguously (through an index array every box scan missed the cache: 0.18 s of 0.29 s for
+  // 681k points). The pair found does not depend on the tree's shape: the search is exact.
+  explicit KdTree(const std::vector<Vec3>& points) : items_(points.size()) {
+    for (std::size_t k = 0; k < points.size(); ++k) items_[k] = {points[k], static_cast<std::int32_t>(k)};
     nodes_.reserve(2 * points.size() / kLeafSize + 2);
     build(0, static_cast<std::int32_t>(points.size()));
   }
@@ -45,10 +49,9 @@ class KdTree {
     return sum;
   }
 
-  // Updates (best, pair) with every point j whose distance to point i beats or ties it (ties go to the
-  // smaller index pair).
-  void improve(std::int32_t i, double& best, std::pair<std::int32_t, std::int32_t>& pair) const {
-    const Vec3& p = points_[i];
+  // Updates (best, pair) with every point j whose distance to point i (at p) beats or ties it (ties go
+  // to the smaller index pair).
+  void improve(std::int32_t i, const Vec3& p, double& best, std::pair<std::int32_t, std::int32_t>& pair) const {
     std::int32_t stack[128];
     int top = 0;
     stack[top++] = 0;
@@ -57,9 +60,9 @@ class KdTree {
       if (max_squared_distance(p, node) < best) continue;
       if (node.left < 0) {
         for (std::int32_t k = node.begin; k < node.end; ++k) {
-          const std::int32_t j = order_[k];
+          const std::int32_t j = items_[k].index;
           if (j == i) continue;
-          const double d = squared(p, points_[j]);
+          const double d = squared(p, items_[k].point);
           const std::pair<std::int32_t, std::int32_t> candidate{std::min(i, j), std::max(i, j)};
           if (d > best || (d == best && candidate < pair)) {
             best = d;
@@ -82,17 +85,22 @@ class KdTree {
   }
 
  private:
+  struct Item {
+    Vec3 point;
+    std::int32_t index;
+  };
+
   std::int32_t build(std::int32_t begin, std::int32_t end) {
     const auto id = static_cast<std::int32_t>(nodes_.size());
     nodes_.push_back({});
     Node node;
     node.begin = begin;
     node.end = end;
-    node.lo = node.hi = points_[order_[begin]];
+    node.lo = node.hi = items_[begin].point;
     for (std::int32_t k = begin; k < end; ++k) {
       for (int a = 0; a < 3; ++a) {
-        node.lo[a] = std::min(node.lo[a], points_[order_[k]][a]);
-        node.hi[a] = std::max(node.hi[a], points_[order_[k]][a]);
+        node.lo[a] = std::min(node.lo[a], items_[k].point[a]);
+        node.hi[a] = std::max(node.hi[a], items_[k].point[a]);
       }
     }
     if (end - begin > kLeafSize) {
@@ -100,10 +108,9 @@ class KdTree {
       for (int a = 1; a < 3; ++a)
         if (node.hi[a] - node.lo[a] > node.hi[axis] - node.lo[axis]) axis = a;
       const std::int32_t middle = begin + (end - begin) / 2;
-      std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
-                       [&](std::int32_t x, std::int32_t y) {
-                         return points_[x][axis] != points_[y][axis] ? points_[x][axis] < points_[y][axis] : x < y;
-                       });
+      std::nth_element(items_.begin() + begin, items_.begin() + middle, items_.begin() + end, [&](const Item& x, const Item& y) {
+        return x.point[axis] != y.point[axis] ? x.point[axis] < y.point[axis] : x.index < y.index;
+      });
       node.left = build(begin, middle);
       node.right = build(middle, end);
     }
@@ -111,8 +118,7 @@ class KdTree {
     return id;
   }
 
-  const std::vector<Vec3>& points_;
-  std::vector<std::int32_t> order_;
+  std::vector<Item> items_;
   std::vector<Node> nodes_;
 };
 
@@ -121,7 +127,6 @@ class KdTree {
 std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& positions) {
   const auto n = static_cast<std::int32_t>(positions.size());
   if (n < 2) throw std::invalid_argument("farthest_pair: needs at least 2 points");
-  const KdTree tree(positions);
   // A good first guess (repeatedly the farthest point from the last one) makes the pruning effective.
   std::int32_t a = 0;
   for (int round = 0; round < 4; ++round) {
@@ -139,15 +144,10 @@ std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& pos
   double best = -1;
   std::pair<std::int32_t, std::int32_t> pair{0, 1};
   {
-    std::int32_t b = 0;
     double bd = -1;
-    for (std::int32_t j = 0; j < n; ++j) {
-      const double d = KdTree::squared(positions[a], positions[j]);
-      if (d > bd) bd = d, b = j;
-    }
+    for (std::int32_t j = 0; j < n; ++j) bd = std::max(bd, KdTree::squared(positions[a], positions[j]));
     // Only a lower bound to prune with; the exact pair (and tie-breaking) comes from the full search.
     best = std::nextafter(bd, 0.0);
-    (void)b;
   }
   // Visit points from the outside in. A pair at distance D has |p - c| + |q - c| >= D, so once
   // |p - c| + max |q - c| is below the best distance no later point can be in a better pair with
@@ -156,16 +156,37 @@ std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& pos
   for (const auto& p : positions) centre = centre + (1.0 / n) * p;
   std::vector<double> radius(n);
   for (std::int32_t i = 0; i < n; ++i) radius[i] = norm(positions[i] - centre);
-  std::vector<std::int32_t> outside_in(n);
-  std::iota(outside_in.begin(), outside_in.end(), 0);
+  const double largest_radius = *std::max_element(radius.begin(), radius.end());
+  // The relative margin covers the rounding of the radii and of the square root.
+  auto beyond_reach = [&](std::int32_t i) { return (radius[i] + largest_radius) * (1 + 1e-12) < std::sqrt(best); };
+  // best only grows, so a point beyond reach now stays so: only the others are put in order (on a
+  // cube's 681k vertices, its corners only).
+  std::vector<std::int32_t> outside_in;
+  for (std::int32_t i = 0; i < n; ++i)
+    if (!beyond_reach(i)) outside_in.push_back(i);
   std::sort(outside_in.begin(), outside_in.end(), [&](std::int32_t x, std::int32_t y) {
     return radius[x] != radius[y] ? radius[x] > radius[y] : x < y;
   });
-  const double largest_radius = radius[outside_in.front()];
+  // Updates (best, pair) with every point j whose distance to point i beats or ties it (ties go to the
+  // smaller index pair): by a scan of all points for the first few visited, through a k-d tree (built
+  // then) for the rest. Either finds the same pairs.
+  constexpr int kScannedPoints = 16;
+  int visited = 0;
+  std::optional<KdTree> tree;
   for (auto i : outside_in) {
-    // The relative margin covers the rounding of the radii and of the square root.
-    if ((radius[i] + largest_radius) * (1 + 1e-12) < std::sqrt(best)) break;
-    tree.improve(i, best, pair);
+    if (beyond_reach(i)) break;
+    if (visited++ < kScannedPoints) {
+      const Vec3& p = positions[i];
+      for (std::int32_t j = 0; j < n; ++j) {
+        if (j == i) continue;
+        const double d = KdTree::squared(p, positions[j]);
+        const std::pair<std::int32_t, std::int32_t> candidate{std::min(i, j), std::max(i, j)};
+        if (d > best || (d == best && candidate < pair)) best = d, pair = candidate;
+      }
+      continue;
+    }
+    if (!tree) tree.emplace(positions);
+    tree->improve(i, positions[i], best, pair);
   }
   return pair;
 }

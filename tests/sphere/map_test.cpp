@@ -62,6 +62,26 @@ TEST(FarthestPair, MatchesBruteForce) {
   const Mesh ico = make_icosphere(3);
   const auto [a, b] = farthest_pair(ico.positions);
   EXPECT_NEAR(norm(ico.positions[a] - ico.positions[b]), 2.0, 1e-12);
+  // Point sets where the search visits many points (nearly all as far from the centre: past the first
+  // few, scanned, it goes through the k-d tree) and a few (a cube's corners), against brute force,
+  // ties included (antipodal pairs by the hundred).
+  for (const Mesh& shape : {make_icosphere(3), perturb_vertices(make_icosphere(3), 0.3, 4), make_subdivided_cube(12),
+                            make_ellipsoid(3, 1, 1, 1.001), make_dumbbell(3, 0.5, 20, 16)}) {
+    const auto& points = shape.positions;
+    double best = -1;
+    std::pair<std::int32_t, std::int32_t> expected;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(points.size()); ++i)
+      for (std::int32_t j = i + 1; j < static_cast<std::int32_t>(points.size()); ++j) {
+        double d = 0;
+        for (int c = 0; c < 3; ++c) d += std::abs(points[i][c] - points[j][c]) * std::abs(points[i][c] - points[j][c]);
+        if (d > best) best = d, expected = {i, j};
+      }
+    EXPECT_EQ(farthest_pair(points), expected) << points.size() << " points";
+  }
+  // Two pairs at exactly the same distance: the one of the point farthest from the centre is found first,
+  // the other (smaller indices) must still win.
+  const std::vector<Vec3> tie{{-1, 0, 0}, {1, 0, 0}, {0, -1.25, 0}, {0, 0.75, 0}, {0, 0.5, 0}};
+  EXPECT_EQ(farthest_pair(tie), (std::pair<std::int32_t, std::int32_t>{0, 1}));
 }
 
 TEST(SphereMap, IcospheresMapCertifiedAndCloseToIdentity) {
