@@ -182,17 +182,18 @@ AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)), tem
 }
 
 AtomicFile::~AtomicFile() {
-  if (stream_ == nullptr) return;
-  std::fclose(stream_);
+  if (stream_ != nullptr) discard();
+}
+
+void AtomicFile::discard() noexcept {
+  if (stream_ != nullptr) std::fclose(stream_);
+  stream_ = nullptr;
   std::error_code ignored;
   std::filesystem::remove(temporary_, ignored);
 }
 
 void AtomicFile::discard_and_fail(const std::string& problem) {
-  if (stream_ != nullptr) std::fclose(stream_);
-  stream_ = nullptr;
-  std::error_code ignored;
-  std::filesystem::remove(temporary_, ignored);
+  discard();
   fail(path_.string(), problem, "check that the folder exists, is writable and the disk is not full");
 }
 

@@ -577,6 +577,12 @@ int euler_change(const Grid3<T>& field, double level, const std::vector<std::int
   return after - before;
 }
 
+// Puts back the field values a change replaced (its samples' original_values).
+template <typename T>
+void restore_change(T* values, const TopologyChange& change) {
+  for (std::size_t k = 0; k < change.samples.size(); ++k) values[change.samples[k]] = static_cast<T>(change.original_values[k]);
+}
+
 // Whether a change just applied (its samples already on their new side) split the side they left around
 // it (a piece cut off the solid, or a pocket of the outside closed off), or left its samples apart from
 // their new side (a floating piece, an enclosed void). Either raises the Euler characteristic as a removed
@@ -1643,7 +1649,7 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
     // not chosen then remove if they can (else the next round). Among the 88 structures: GroEL at 0.5 Å
     // (a cut; it needed a second round of growths before), 3o21 at 0.25 Å (a cut) and 1vln at 1 Å (a fill).
     if (splits_its_side(lattice, values, level, change.samples, !change.filled, split_search_budget)) {
-      for (std::size_t k = 0; k < change.samples.size(); ++k) values[change.samples[k]] = static_cast<T>(change.original_values[k]);
+      restore_change(values, change);
       change.original_values.clear();
       continue;
     }
@@ -1657,9 +1663,7 @@ HandleRepair repair_handles_impl(Grid3<T>& field, double level, double minimum_f
 
 template <typename T>
 void undo_impl(Grid3<T>& field, const HandleRepair& repair) {
-  for (auto change = repair.changes.rbegin(); change != repair.changes.rend(); ++change)
-    for (std::size_t k = 0; k < change->samples.size(); ++k)
-      field.values[change->samples[k]] = static_cast<T>(change->original_values[k]);
+  for (auto change = repair.changes.rbegin(); change != repair.changes.rend(); ++change) restore_change(field.values.data(), *change);
 }
 
 template <typename T>

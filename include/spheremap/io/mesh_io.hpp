@@ -49,6 +49,7 @@ class AtomicFile {
   void commit();
 
  private:
+  void discard() noexcept;  // closes and removes the temporary file
   [[noreturn]] void discard_and_fail(const std::string& problem);
   std::filesystem::path path_, temporary_;
   std::FILE* stream_ = nullptr;
