@@ -41,7 +41,7 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, bool for_ma
                               "binary grid contoured at 1/2: vertices at edge midpoints). 'fast': a quick look (grid {} Å{}; "
                               "areas about 1-1.5% below MSMS's). Options given explicitly still win",
                               kPaperProbe, kPaperGrid, kFastGrid,
-                              for_map ? fmt::format(", mesh edges {} Å, no equalizing rounds", kFastMeshEdge) : ""))
+                              for_map ? fmt::format(", mesh edges {} Å, at most {} equalizing rounds", kFastMeshEdge, kFastEqualizingRounds) : ""))
       ->check(CLI::IsMember({"paper", "fast"}));
   cmd->add_flag("--cavities", cavities,
                 "Carve internal cavities that hold a probe, as separate reported components (default: filled, as MSMS's "
@@ -70,7 +70,7 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
     // The surface command has neither option: it writes the contour as it is unless --mesh-edge is given.
     const CLI::Option* equalizing = command->get_option_no_throw("--equalizing-rounds");
     if (equalizing != nullptr) {
-      if (equalizing->count() == 0) options.map.max_equalizing_rounds = 0;
+      if (equalizing->count() == 0) options.map.max_equalizing_rounds = kFastEqualizingRounds;
       if (mesh_edge < 0) options.simplify.target_edge_length = kFastMeshEdge;
     }
   }

@@ -352,8 +352,26 @@ struct Finished {
   bool untangled = false;  // untangling ran
 };
 
-Finished finish_map(const Mesh& mesh, const VertexRings& input_rings, std::vector<Vec3> sphere,
-                    const MapOptions& options, StageTimer* timer = nullptr) {
+// The input's rings (the untangling works on the input's triangles, not the split working mesh), and what
+// the untangling needs of the input, built at its first call and shared by the others (5hr7's default map
+// untangles 10 candidates, one per equalizing round; building it took 9 ms of each call's 15).
+class InputStars {
+ public:
+  explicit InputStars(const Mesh& mesh, const VertexRings& rings) : mesh_(mesh), rings_(rings) {}
+  [[nodiscard]] const VertexRings& rings() const { return rings_; }
+  const detail::UntanglingFrame& untangling_frame() {
+    if (!frame_) frame_ = detail::untangling_frame(mesh_, rings_);
+    return *frame_;
+  }
+
+ private:
+  const Mesh& mesh_;
+  const VertexRings& rings_;
+  std::optional<detail::UntanglingFrame> frame_;
+};
+
+Finished finish_map(const Mesh& mesh, InputStars& input, std::vector<Vec3> sphere, const MapOptions& options,
+                    StageTimer* timer = nullptr) {
   Finished finished;
   finished.superposition = superpose_sphere_on_surface(mesh.positions, sphere);
   for (auto& p : sphere) p = rotate(finished.superposition.rotation, p);
@@ -361,7 +379,8 @@ Finished finish_map(const Mesh& mesh, const VertexRings& input_rings, std::vecto
   finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor, &finished.solid_angles);
   if (options.repair && !finished.certificate.certified() && std::abs(finished.certificate.coverage - 1) < 1e-9) {
     finished.untangling_moves =
-        detail::untangle_on_sphere(mesh, input_rings, sphere, options.collapse_floor, options.max_untangling_sweeps);
+        detail::untangle_on_sphere(mesh, input.rings(), input.untangling_frame(), sphere, options.collapse_floor,
+                                   options.max_untangling_sweeps);
     finished.untangled = true;
     if (timer) timer->lap("untangle");
     finished.certificate = certify_sphere_map(mesh, sphere, options.collapse_floor, &finished.solid_angles);
@@ -400,7 +419,7 @@ std::unique_ptr<detail::ReusableCholesky> make_factor(const WorkingMesh& work, c
 ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh& work, std::int32_t north,
                                              std::int32_t south, double mercator_c,
                                              const detail::EdgeWeights& base, const MapOptions& options,
-                                             const VertexRings& input_rings, Candidate plain, OrderChoice& order) {
+                                             InputStars& input, Candidate plain, OrderChoice& order) {
   const auto n = static_cast<std::int32_t>(mesh.positions.size());
   const auto count = work.rings.vertex_count();
   ReweightingOutcome outcome{std::move(plain), 0, 0, std::nullopt};
@@ -500,7 +519,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
     rejections = 0;
     // Few bad triangles left: untangling may certify this round, far more cheaply than another round.
     if (bad <= kUntanglingAttempt) {
-      outcome.finished = finish_map(mesh, input_rings, outcome.best.sphere, options);
+      outcome.finished = finish_map(mesh, input, outcome.best.sphere, options);
       if (outcome.finished->certificate.certified()) break;
     }
   }
@@ -508,7 +527,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   // Rounds that stop with bad triangles left (patience, or too many for the attempt above) leave them to
   // untangling, which map_to_sphere would try anyway; trying it here lets a certified result be equalized.
   if (!outcome.best.certificate.certified() && !outcome.finished)
-    outcome.finished = finish_map(mesh, input_rings, outcome.best.sphere, options);
+    outcome.finished = finish_map(mesh, input, outcome.best.sphere, options);
 
   // Equalizing, once the best round is certified (by itself or after untangling).
   const bool certified_by_itself = outcome.best.certificate.certified();
@@ -539,7 +558,7 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
       candidate_distortion = mean_area_distortion(input_areas, candidate.solid_angles);
     } else if (std::abs(cc.coverage - 1) < 1e-9 &&
                cc.folded + cc.collapsed <= std::max<std::int64_t>(kUntanglingAttempt, static_cast<std::int64_t>(mesh.triangles.size()) / 100)) {
-      untangled = finish_map(mesh, input_rings, candidate.sphere, options);
+      untangled = finish_map(mesh, input, candidate.sphere, options);
       if (untangled->certificate.certified()) candidate_distortion = mean_area_distortion(input_areas, untangled->solid_angles);
     }
     if (!(candidate_distortion < distortion)) {
@@ -681,13 +700,11 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   result.plain_certificate = certify_sphere_map(mesh, sphere, options.collapse_floor, &plain_solid_angles);
   timer.lap("certify-plain");
 
-  // The input's rings: the untangling works on the input's triangles, not the split working mesh.
   std::optional<VertexRings> unsplit_rings;
-  const VertexRings& input_rings =
-      work.rings.vertex_count() == n ? work.rings : unsplit_rings.emplace(build_vertex_rings(n, mesh.triangles));
+  InputStars input(mesh, work.rings.vertex_count() == n ? work.rings : unsplit_rings.emplace(build_vertex_rings(n, mesh.triangles)));
   std::optional<Finished> finished;
   if (options.repair && result.method == "poles-and-rings" && result.plain_certificate.collapsed > 0) {
-    auto outcome = reweight_against_collapse(mesh, work, north, south, result.mercator_c, weights, options, input_rings,
+    auto outcome = reweight_against_collapse(mesh, work, north, south, result.mercator_c, weights, options, input,
                                              Candidate{planar, sphere, result.plain_certificate, std::move(plain_solid_angles)}, order);
     planar = std::move(outcome.best.planar);
     sphere = std::move(outcome.best.sphere);
@@ -697,7 +714,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     result.solver_used = planar.z_stats.solver;
     timer.lap("reweight");
   }
-  if (!finished) finished = finish_map(mesh, input_rings, std::move(sphere), options, &timer);
+  if (!finished) finished = finish_map(mesh, input, std::move(sphere), options, &timer);
   result.superposition = finished->superposition;
   result.untangling_moves = finished->untangling_moves;
   result.certificate = std::move(finished->certificate);

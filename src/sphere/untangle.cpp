@@ -7,6 +7,7 @@
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/certify.hpp"
+#include "../surface/parallel.hpp"
 
 namespace spheremap::detail {
 
@@ -49,22 +50,8 @@ void clip(const std::vector<Point2>& polygon, double ax, double ay, double b, st
 
 class Untangler {
  public:
-  Untangler(const Mesh& surface, const VertexRings& rings, std::vector<Vec3>& sphere, double floor)
-      : surface_(surface), rings_(rings), sphere_(sphere), floor_(floor), target_(target_solid_angles(surface)) {
-    // Triangle index of each (vertex, ring slot).
-    const auto n = rings.vertex_count();
-    star_triangle_.assign(rings.neighbors.size(), -1);
-    for (std::int32_t t = 0; t < static_cast<std::int32_t>(surface.triangles.size()); ++t) {
-      const auto& tri = surface.triangles[t];
-      for (int s = 0; s < 3; ++s) {
-        const auto v = tri[s], next = tri[(s + 1) % 3];
-        const auto ring = rings.ring(v);
-        for (std::size_t k = 0; k < ring.size(); ++k)
-          if (ring[k] == next) star_triangle_[rings.offsets[v] + static_cast<std::int64_t>(k)] = t;
-      }
-    }
-    (void)n;
-  }
+  Untangler(const Mesh& surface, const VertexRings& rings, const UntanglingFrame& frame, std::vector<Vec3>& sphere, double floor)
+      : surface_(surface), rings_(rings), sphere_(sphere), floor_(floor), target_(frame.target), star_triangle_(frame.star_triangle) {}
 
   // Smallest quality of the triangles around v if v were at p: solid angle / target, where a triangle
   // the exact predicate calls folded counts as negative whatever the rounded solid angle says.
@@ -169,8 +156,12 @@ class Untangler {
     // million-triangle map with a few thousand bad ones re-checked every triangle: most of the time).
     const auto triangles = static_cast<std::int32_t>(surface_.triangles.size());
     std::vector<char> bad(static_cast<std::size_t>(triangles), 0);
-    std::int64_t bad_count = 0;
-    for (std::int32_t t = 0; t < triangles; ++t) bad_count += bad[t] = triangle_is_bad(t) ? 1 : 0;
+    constexpr std::int32_t kChunk = 16384;
+    detail::parallel_chunks((triangles + kChunk - 1) / kChunk, detail::surface_threads(0), [&](std::int64_t chunk, int) {
+      const auto first = static_cast<std::int32_t>(chunk) * kChunk, last = std::min(triangles, first + kChunk);
+      for (std::int32_t t = first; t < last; ++t) bad[t] = triangle_is_bad(t) ? 1 : 0;
+    });
+    std::int64_t bad_count = std::count(bad.begin(), bad.end(), 1);
     std::vector<std::int32_t> moved_vertices;
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
       if (bad_count == 0) break;
@@ -207,16 +198,36 @@ class Untangler {
   const VertexRings& rings_;
   std::vector<Vec3>& sphere_;
   double floor_;
-  std::vector<double> target_;
-  std::vector<std::int32_t> star_triangle_;
+  const std::vector<double>& target_;
+  const std::vector<std::int32_t>& star_triangle_;
   std::vector<Point2> polygon_, clipped_;  // scratch of move's clipping
 };
 
 }  // namespace
 
-std::int64_t untangle_on_sphere(const Mesh& surface, const VertexRings& rings, std::vector<Vec3>& sphere,
-                                double collapse_floor, int max_sweeps) {
-  Untangler untangler(surface, rings, sphere, collapse_floor);
+UntanglingFrame untangling_frame(const Mesh& surface, const VertexRings& rings) {
+  UntanglingFrame frame{target_solid_angles(surface), std::vector<std::int32_t>(rings.neighbors.size(), -1)};
+  // Each slot (v, next) belongs to exactly one triangle, so the triangles fill their slots on any thread.
+  const auto triangles = static_cast<std::int32_t>(surface.triangles.size());
+  constexpr std::int32_t kChunk = 16384;
+  detail::parallel_chunks((triangles + kChunk - 1) / kChunk, detail::surface_threads(0), [&](std::int64_t chunk, int) {
+    const auto first = static_cast<std::int32_t>(chunk) * kChunk, last = std::min(triangles, first + kChunk);
+    for (std::int32_t t = first; t < last; ++t) {
+      const auto& tri = surface.triangles[t];
+      for (int s = 0; s < 3; ++s) {
+        const auto v = tri[s], next = tri[(s + 1) % 3];
+        const auto ring = rings.ring(v);
+        for (std::size_t k = 0; k < ring.size(); ++k)
+          if (ring[k] == next) frame.star_triangle[rings.offsets[v] + static_cast<std::int64_t>(k)] = t;
+      }
+    }
+  });
+  return frame;
+}
+
+std::int64_t untangle_on_sphere(const Mesh& surface, const VertexRings& rings, const UntanglingFrame& frame,
+                                std::vector<Vec3>& sphere, double collapse_floor, int max_sweeps) {
+  Untangler untangler(surface, rings, frame, sphere, collapse_floor);
   return untangler.run(max_sweeps);
 }
 

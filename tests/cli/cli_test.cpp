@@ -282,7 +282,7 @@ TEST_F(Cli, PaperPresetSetsProbeGridAndMidpointContourAndExplicitOptionsWin) {
   EXPECT_EQ(settings("--preset paper --grid 1.5"), std::make_tuple(1.8, 1.5, 0.5));
 }
 
-TEST_F(Cli, FastPresetSetsGridMeshEdgeAndNoEqualizingAndExplicitOptionsWin) {
+TEST_F(Cli, FastPresetSetsGridMeshEdgeAndFewEqualizingRoundsAndExplicitOptionsWin) {
   const fs::path input = write_three_atoms(folder_ / "three.pdb");
   // grid, target edge, simplification tolerance, equalizing rounds, probe
   auto settings = [&](const std::string& options) {
@@ -292,8 +292,9 @@ TEST_F(Cli, FastPresetSetsGridMeshEdgeAndNoEqualizingAndExplicitOptionsWin) {
                            report["options"]["max_equalizing_rounds"].get<int>(), report["structure"]["probe"].get<double>());
   };
   EXPECT_EQ(settings(""), std::make_tuple(0.5, 1.0, 0.1, 12, 1.4));
-  EXPECT_EQ(settings("--preset fast"), std::make_tuple(1.0, 2.0, 0.2, 0, 1.4));
+  EXPECT_EQ(settings("--preset fast"), std::make_tuple(1.0, 2.0, 0.2, 4, 1.4));
   EXPECT_EQ(settings("--preset fast --grid 0.7 --mesh-edge 1.5 --equalizing-rounds 3"), std::make_tuple(0.7, 1.5, 0.15, 3, 1.4));
+  EXPECT_EQ(settings("--preset fast --equalizing-rounds 0"), std::make_tuple(1.0, 2.0, 0.2, 0, 1.4));
   // The surface command has no map options: the preset sets its grid, and the contour is written as it is.
   const fs::path surface = folder_ / "fast-surface.ply";
   const auto run = run_cli("surface " + input.string() + " -o " + surface.string() + " --preset fast");
