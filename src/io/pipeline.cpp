@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -201,6 +202,9 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     stage_start = std::chrono::steady_clock::now();
   };
   Mesh mesh;
+  // The components of the final contour, when a step computed them already (adding provenance changes
+  // neither its triangles nor its positions).
+  std::optional<std::vector<MeshComponent>> final_components;
   {
     // The single-precision field (4 bytes per sample) is freed as soon as the final contour exists; the
     // repair adds a state byte and two bytes of distance per sample, counted against the memory budget.
@@ -210,19 +214,22 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     lap("field");
     mesh = contour_isosurface(field, 0.0, surface.threads, surface.contour_minimum_fraction);
     {
-      // Scoped: its triangle lists (one index per triangle) would otherwise stay through the repair.
-      const auto before = mesh_components(mesh);
+      // Scoped, and kept only when no repair follows: its triangle lists (one index per triangle) would
+      // otherwise stay through the repair.
+      auto before = mesh_components(mesh);
       report.genus_before = before.empty() ? 0 : before.front().genus;
       report.area_before = before.empty() ? 0 : before.front().area;
+      if (keep_topology || report.genus_before == 0) final_components = std::move(before);
     }
     lap("contour");
     if (!keep_topology && report.genus_before != 0) {
       mesh = Mesh{};  // the repair needs the memory; its last genus check contours the repaired field
-      const GenusRepair fix =
+      GenusRepair fix =
           repair_outer_genus(field, 0.0, report.genus_before, surface.threads, surface.contour_minimum_fraction, mesh);
       double largest_radius = 0;
       for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
       const double reach = largest_radius + surface.probe + 2 * surface.grid;
+      final_components = std::move(fix.final_components);
       report.method = fix.method;
       report.rounds = fix.rounds;  // 0 unless "per-handle"
       report.samples_changed = fix.samples_changed;
@@ -241,7 +248,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
   result.atoms = atoms;
   lap("provenance");
   result.mesh = std::move(mesh);
-  result.components = mesh_components(result.mesh);
+  result.components = final_components ? std::move(*final_components) : mesh_components(result.mesh);
   result.reports = describe_components(result.mesh, result.components, atoms);
   report.area_after = result.components.empty() ? 0 : result.components.front().area;
   if (report.method == "none") report.area_before = report.area_after;

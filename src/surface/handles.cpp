@@ -1686,13 +1686,17 @@ HandleCut cut_handles_impl(Grid3<T>& field, double level, double minimum_fractio
   return result;
 }
 
-// The genus of the largest component of the field's contour; the contour is kept in *mesh if given.
+// The genus of the largest component of the field's contour; the contour is kept in *mesh if given, with
+// its components in *kept_components when its genus is 0.
 template <typename T>
-int contour_genus(const Grid3<T>& field, double level, int threads, double minimum_fraction, Mesh* mesh) {
+int contour_genus(const Grid3<T>& field, double level, int threads, double minimum_fraction, Mesh* mesh,
+                  std::optional<std::vector<MeshComponent>>* kept_components = nullptr) {
   Mesh contour = contour_isosurface(field, level, threads, minimum_fraction);
-  const auto components = mesh_components(contour);
+  auto components = mesh_components(contour);
   if (mesh) *mesh = std::move(contour);
-  return components.empty() ? 0 : components.front().genus;
+  const int genus = components.empty() ? 0 : components.front().genus;
+  if (kept_components && genus == 0) *kept_components = std::move(components);
+  return genus;
 }
 
 template <typename T>
@@ -1717,7 +1721,8 @@ GenusRepair repair_outer_genus_impl(Grid3<T>& field, double level, int genus_bef
     result.per_handle.samples_changed += more.samples_changed;
     result.per_handle.area_change += more.area_change;
     for (auto& change : more.changes) result.per_handle.changes.push_back(std::move(change));
-    genus = contour_genus(field, level, threads, minimum_fraction, final_contour);
+    genus = contour_genus(field, level, threads, minimum_fraction, final_contour,
+                          final_contour ? &result.final_components : nullptr);
     if (genus == 0) {
       result.method = "per-handle";
       result.samples_changed = result.per_handle.samples_changed;

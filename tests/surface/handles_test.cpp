@@ -286,7 +286,7 @@ TEST(Handles, NoChangeSplitsOffAPieceOrClosesAPocketIntoAVoid) {
   }
 }
 
-TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourIsReturned) {
+TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourAndItsComponentsAreReturned) {
   // The pipeline repairs the float field and takes the last contour from the repair: the same changes as
   // for the double field (the values are small integers and halves, exact in both), and that contour is
   // the repaired field's.
@@ -316,6 +316,20 @@ TEST(Handles, SinglePrecisionFieldsAreRepairedLikeDoubleOnesAndTheFinalContourIs
     const auto after = mesh_components(final_contour);
     ASSERT_FALSE(after.empty());
     EXPECT_EQ(after.front().genus, 0);
+    // A per-handle repair passes on the components it computed for its last genus check: exactly those
+    // of the contour it returns (the pipeline uses them instead of computing them again).
+    if (in_single.method == "per-handle") {
+      ASSERT_TRUE(in_single.final_components.has_value()) << "trial " << trial;
+      const auto& kept = *in_single.final_components;
+      ASSERT_EQ(kept.size(), after.size()) << "trial " << trial;
+      for (std::size_t c = 0; c < after.size(); ++c) {
+        EXPECT_EQ(kept[c].triangles, after[c].triangles) << "trial " << trial << " component " << c;
+        EXPECT_EQ(kept[c].vertices, after[c].vertices);
+        EXPECT_EQ(kept[c].area, after[c].area);
+        EXPECT_EQ(kept[c].signed_volume, after[c].signed_volume);
+        EXPECT_EQ(kept[c].genus, after[c].genus);
+      }
+    }
     repaired += in_single.method != "none";
   }
   EXPECT_GT(repaired, 0);

@@ -2,12 +2,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "spheremap/mesh.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/grid.hpp"
+#include "spheremap/topology/components.hpp"
 
 namespace spheremap {
 
@@ -111,6 +113,9 @@ struct GenusRepair {
   HandleCut global;               // when method is "fill" or "cut"
   std::int64_t samples_changed = 0;
   int rounds = 0;                 // rounds of repair_handles until the outer surface had genus 0 ("per-handle")
+  /// mesh_components of the final contour, when the overload that returns that contour computed them on
+  /// the way (a "per-handle" repair): a caller need not compute them again.
+  std::optional<std::vector<MeshComponent>> final_components;
 };
 
 /// Makes the largest component of the contour {field = level} (the outer surface of a molecule) genus 0
