@@ -96,11 +96,8 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
   std::vector<double> area(count);
   constexpr std::uint8_t kPositive = 1, kDecidedExactly = 2;
   std::vector<std::uint8_t> verdict(count);
-  constexpr std::size_t kChunk = 16384;
-  const auto chunks = static_cast<std::int64_t>((count + kChunk - 1) / kChunk);
-  detail::parallel_chunks(chunks, detail::surface_threads(0), [&](std::int64_t chunk, int) {
-    const std::size_t first = static_cast<std::size_t>(chunk) * kChunk, last = std::min(count, first + kChunk);
-    for (std::size_t index = first; index < last; ++index) {
+  detail::parallel_ranges(static_cast<std::int64_t>(count), 16384, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
+    for (auto index = static_cast<std::size_t>(first); index < static_cast<std::size_t>(last); ++index) {
       const auto& t = surface.triangles[index];
       const Vec3& a = sphere[t[0]];
       const Vec3& b = sphere[t[1]];

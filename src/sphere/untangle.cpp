@@ -156,10 +156,8 @@ class Untangler {
     // million-triangle map with a few thousand bad ones re-checked every triangle: most of the time).
     const auto triangles = static_cast<std::int32_t>(surface_.triangles.size());
     std::vector<char> bad(static_cast<std::size_t>(triangles), 0);
-    constexpr std::int32_t kChunk = 16384;
-    detail::parallel_chunks((triangles + kChunk - 1) / kChunk, detail::surface_threads(0), [&](std::int64_t chunk, int) {
-      const auto first = static_cast<std::int32_t>(chunk) * kChunk, last = std::min(triangles, first + kChunk);
-      for (std::int32_t t = first; t < last; ++t) bad[t] = triangle_is_bad(t) ? 1 : 0;
+    detail::parallel_ranges(triangles, 16384, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
+      for (auto t = static_cast<std::int32_t>(first); t < last; ++t) bad[t] = triangle_is_bad(t) ? 1 : 0;
     });
     std::int64_t bad_count = std::count(bad.begin(), bad.end(), 1);
     std::vector<std::int32_t> moved_vertices;
@@ -209,10 +207,8 @@ UntanglingFrame untangling_frame(const Mesh& surface, const VertexRings& rings) 
   UntanglingFrame frame{target_solid_angles(surface), std::vector<std::int32_t>(rings.neighbors.size(), -1)};
   // Each slot (v, next) belongs to exactly one triangle, so the triangles fill their slots on any thread.
   const auto triangles = static_cast<std::int32_t>(surface.triangles.size());
-  constexpr std::int32_t kChunk = 16384;
-  detail::parallel_chunks((triangles + kChunk - 1) / kChunk, detail::surface_threads(0), [&](std::int64_t chunk, int) {
-    const auto first = static_cast<std::int32_t>(chunk) * kChunk, last = std::min(triangles, first + kChunk);
-    for (std::int32_t t = first; t < last; ++t) {
+  detail::parallel_ranges(triangles, 16384, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
+    for (auto t = static_cast<std::int32_t>(first); t < last; ++t) {
       const auto& tri = surface.triangles[t];
       for (int s = 0; s < 3; ++s) {
         const auto v = tri[s], next = tri[(s + 1) % 3];

@@ -107,12 +107,8 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
     double largest_radius = 0;
     for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
     const AtomGrid grid(atoms, 2.0);
-    constexpr std::size_t kChunk = 16384;
-    const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
-    auto chunk_range = [&](std::int64_t chunk) {
-      const std::size_t first = static_cast<std::size_t>(chunk) * kChunk;
-      return std::pair{first, std::min(n, first + kChunk)};
-    };
+    constexpr std::int64_t kChunk = 16384;
+    const auto vertex_count = static_cast<std::int64_t>(n);
     // The box of the vertices, and its cells.
     Vec3 lo = mesh.positions.front(), hi = lo;
     for (const Vec3& p : mesh.positions)
@@ -131,9 +127,8 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
     };
     // slot[cell]: -1 without vertices; then the cell's rank among the cells with vertices.
     std::vector<std::int32_t> slot(static_cast<std::size_t>(cells[0] * cells[1] * cells[2]), -1);
-    detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
-      const auto [first, end] = chunk_range(chunk);
-      for (std::size_t v = first; v < end; ++v)
+    detail::parallel_ranges(vertex_count, kChunk, threads, [&](std::int64_t first, std::int64_t end) {
+      for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v)
         std::atomic_ref<std::int32_t>(slot[static_cast<std::size_t>(cell_of(mesh.positions[v]))]).store(0, std::memory_order_relaxed);
     });
     std::vector<std::int64_t> used;
@@ -194,9 +189,8 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
     std::vector<Candidate> candidates;
     candidates.reserve(static_cast<std::size_t>(chunk_offset.back()));
     for (auto& part : chunk_candidates) candidates.insert(candidates.end(), part.begin(), part.end()), std::vector<Candidate>().swap(part);
-    detail::parallel_chunks(chunks, threads, [&](std::int64_t chunk, int) {
-      const auto [first, end] = chunk_range(chunk);
-      for (std::size_t v = first; v < end; ++v) {
+    detail::parallel_ranges(vertex_count, kChunk, threads, [&](std::int64_t first, std::int64_t end) {
+      for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v) {
         const Vec3& p = mesh.positions[v];
         const auto u = static_cast<std::size_t>(slot[static_cast<std::size_t>(cell_of(p))]);
         double best = std::numeric_limits<double>::infinity();

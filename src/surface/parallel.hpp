@@ -63,6 +63,16 @@ void parallel_chunks(std::int64_t chunks, int threads, Task&& task) {
   if (error) std::rethrow_exception(error);
 }
 
+/// parallel_chunks over the items [0, count) in consecutive ranges of `size` items (the last may be
+/// shorter): task(first, last) for each range [first, last). The same rules for outputs.
+template <typename Task>
+void parallel_ranges(std::int64_t count, std::int64_t size, int threads, Task&& task) {
+  parallel_chunks((count + size - 1) / size, threads, [&](std::int64_t chunk, int) {
+    const std::int64_t first = chunk * size;
+    task(first, std::min(count, first + size));
+  });
+}
+
 /// Reserves `count` elements of `values` and has the kernel map their pages from `threads` threads at
 /// once (MADV_POPULATE_WRITE, Linux 5.14): arrays of hundreds of megabytes (the grid, the contour's
 /// vertices and triangles) otherwise spend a tenth of a second in page faults on the one thread that
