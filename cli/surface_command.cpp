@@ -20,7 +20,7 @@ Command add_surface_command(CLI::App& app) {
   auto state = std::make_shared<SurfaceState>();
   auto& s = *state;
   auto* command = app.add_subcommand(
-      "surface", "Write the solvent-excluded surface of a structure (PDB, mmCIF, PQR) as PLY, every component, with atom provenance");
+      "surface", "Write the solvent-excluded surface of a structure (PDB, mmCIF, PQR) as PLY, every component, with atom provenance (and each atom's B-factor, or PQR charge, per vertex)");
   command->add_option("input", s.input, "Structure file: .pdb .ent .cif .mmcif (also .gz) .pqr")->required();
   command->add_option("-o,--output", s.output, "Output .ply file")->required();
   command->add_flag("--ascii", s.options.ascii, "ASCII PLY with full precision (%.17g)");

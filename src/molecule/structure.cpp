@@ -3,6 +3,7 @@
 #include <gemmi/mmread.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -19,6 +20,16 @@ namespace spheremap {
 namespace {
 
 constexpr double kAbsurdCoordinate = 1e5;  // Å; no deposited structure comes close
+
+// The shortest decimal that reads back as `value`: what the file wrote, as a double (gemmi keeps
+// B-factors as floats, and 15.23f widened to double is 15.229999542236328).
+double decimal_of(float value) {
+  std::array<char, 32> text{};
+  const auto written = std::to_chars(text.data(), text.data() + text.size(), value);
+  double result = value;
+  if (written.ec == std::errc{}) std::from_chars(text.data(), written.ptr, result);
+  return result;
+}
 
 std::string upper(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
@@ -64,7 +75,7 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int
   auto table = document.blocks.front().find(
       "_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?group_PDB", "?id", "?type_symbol", "?label_atom_id",
                       "?label_alt_id", "?label_comp_id", "?auth_asym_id", "?label_asym_id", "?auth_seq_id",
-                      "?label_seq_id", "?pdbx_PDB_ins_code", "?occupancy", "?pdbx_PDB_model_num"});
+                      "?label_seq_id", "?pdbx_PDB_ins_code", "?occupancy", "?pdbx_PDB_model_num", "?B_iso_or_equiv"});
   if (table.length() == 0) throw InputError(fmt::format("{}: the file contains no atoms (no _atom_site table)", path.string()));
   std::vector<std::string> model_numbers;
   for (auto row : table) {
@@ -97,6 +108,7 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int
     const std::string icode = text(row, 13, "");
     raw.atom.insertion_code = icode.empty() ? ' ' : icode[0];
     raw.occupancy = gemmi::cif::as_number(text(row, 14, "1"), 1);
+    raw.atom.b_factor = gemmi::cif::as_number(text(row, 16, "0"), 0);
     int model_number = model;
     std::from_chars(wanted.data(), wanted.data() + wanted.size(), model_number);
     raw.atom.model = model_number;
@@ -161,6 +173,7 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, int mode
         raw.atom.hetero = residue.het_flag == 'H';
         raw.altloc = a.altloc;
         raw.occupancy = a.occ;
+        raw.atom.b_factor = decimal_of(a.b_iso);
         raw.water = water;
         raw.hydrogen = a.is_hydrogen();
         raw.residue_key = key;
@@ -336,8 +349,10 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
                                           kUnknownElementRadius));
   if (molecule.atoms.size() < 2)
     throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
-                                 "at least two. Check --chains, --model, or keep more atoms",
-                                 path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups"));
+                                 "at least two. Check --chains and --model, or keep more atoms ({})",
+                                 path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
+                                 options.keep_hetero ? "--keep-waters, --keep-hydrogens"
+                                                     : "--keep-waters, --keep-hydrogens, without --no-hetero"));
   return molecule;
 }
 

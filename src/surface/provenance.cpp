@@ -1,5 +1,7 @@
 #include "spheremap/surface/provenance.hpp"
 
+#include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -66,6 +68,21 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
   mesh.text_attributes["vertex_residue_name"] = residue_name.take();
   mesh.text_attributes["vertex_insertion_code"] = insertion_code.take();
   mesh.text_attributes["vertex_chain"] = chain.take();
+  // Per-atom values the file has (every atom of a PDB or mmCIF file has a B-factor, every atom of a PQR
+  // file a charge): written only then, never as made-up zeros.
+  auto per_vertex = [&](const char* attribute, std::optional<double> Atom::*value) {
+    const bool present = !atoms.empty() && std::all_of(atoms.begin(), atoms.end(), [&](const Atom& a) { return (a.*value).has_value(); });
+    if (!present) {
+      mesh.real_attributes.erase(attribute);
+      return;
+    }
+    std::vector<double> values;
+    values.reserve(atom_of.size());
+    for (const std::int32_t index : atom_of) values.push_back(*(atoms[static_cast<std::size_t>(index)].*value));
+    mesh.real_attributes[attribute] = std::move(values);
+  };
+  per_vertex("vertex_b_factor", &Atom::b_factor);
+  per_vertex("vertex_charge", &Atom::charge);
 }
 
 }  // namespace spheremap

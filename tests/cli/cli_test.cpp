@@ -347,8 +347,10 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   for (const char* property : {"property int atomid", "property int vertex_atom_serial", "property int vertex_residue_number",
                                "property int vertex_model", "property list uchar uchar vertex_atom_name",
                                "property list uchar uchar vertex_element", "property list uchar uchar vertex_residue_name",
-                               "property list uchar uchar vertex_insertion_code", "property list uchar uchar vertex_chain"})
+                               "property list uchar uchar vertex_insertion_code", "property list uchar uchar vertex_chain",
+                               "property double vertex_b_factor"})
     EXPECT_NE(header.find(property), std::string::npos) << property;
+  EXPECT_EQ(header.find("vertex_charge"), std::string::npos);  // an mmCIF file has no partial charges
   EXPECT_NE(slurp(folder_ / "crambin" / "report.json").find("\"probe\": 1.4"), std::string::npos);
 
   const auto surface = run_cli("surface " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn.ply").string() +

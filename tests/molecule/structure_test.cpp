@@ -48,6 +48,13 @@ std::string small_pdb() {
          record("HETATM", 7, " O", ' ', "HOH", 'A', 4, 9.000, 5.000, -4.000, 1, "O") + "END\n";
 }
 
+// The same record with a B-factor (columns 61-66).
+std::string record_with_b(int serial, const char* name, const char* residue, int number, double x, double b,
+                          const char* element) {
+  return fmt::format("ATOM  {:>5} {:<4} {:>3} A{:>4}    {:>8.3f}{:>8.3f}{:>8.3f}{:>6.2f}{:>6.2f}          {:>2}\n", serial,
+                     name, residue, number, x, 0.0, 0.0, 1.0, b, element);
+}
+
 TEST(Radii, BondiTableAndCustomTables) {
   EXPECT_DOUBLE_EQ(*bondi_radius("C"), 1.70);
   EXPECT_DOUBLE_EQ(*bondi_radius("cl"), 1.75);
@@ -112,7 +119,10 @@ TEST_F(Structure, ReadsPqrWithAndWithoutChains) {
                           "HETATM    4 ZN   ZN     90      -7.000   6.000   7.000  2.0000 1.3900\n");
   const auto molecule = read_structure(path);
   ASSERT_EQ(molecule.atoms.size(), 3u);
-  EXPECT_DOUBLE_EQ(molecule.atoms[0].charge, 0.0966);
+  ASSERT_TRUE(molecule.atoms[0].charge.has_value());
+  EXPECT_EQ(*molecule.atoms[0].charge, 0.0966);  // the decimal as written, to the last bit
+  EXPECT_EQ(*molecule.atoms[2].charge, 2.0);
+  EXPECT_FALSE(molecule.atoms[0].b_factor.has_value());  // PQR has no B-factor column
   EXPECT_DOUBLE_EQ(molecule.atoms[0].radius, 1.8240);
   EXPECT_EQ(molecule.atoms[0].chain, "A");
   EXPECT_EQ(molecule.atoms[1].residue_number, 52);
@@ -146,8 +156,44 @@ TEST_F(Structure, BadInputsGiveAClearError) {
             std::string::npos);
   EXPECT_NE(message(write("water.pdb", record("HETATM", 1, " O", ' ', "HOH", 'A', 1, 0, 0, 0, 1, "O") +
                                            record("HETATM", 2, " O", ' ', "HOH", 'A', 2, 3, 0, 0, 1, "O")))
-                .find("left after filtering"),
+                .find("left after filtering (hydrogens, waters); a molecular surface needs at least two. Check --chains "
+                      "and --model, or keep more atoms (--keep-waters, --keep-hydrogens)"),
             std::string::npos);
+}
+
+// B-factors are the column users fill with any per-atom value: each must come out as the decimal in the
+// file (gemmi holds it as a float; 15.23f widened is 15.229999542236328).
+TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
+  const auto pdb = read_structure(write("b.pdb", record_with_b(1, " N", "ALA", 1, 1.0, 15.23, "N") +
+                                                    record_with_b(2, " CA", "ALA", 1, 2.5, 7.5, "C") +
+                                                    record_with_b(3, " C", "ALA", 1, 4.0, -0.01, "C") + "END\n"));
+  ASSERT_EQ(pdb.atoms.size(), 3u);
+  for (const auto& a : pdb.atoms) ASSERT_TRUE(a.b_factor.has_value());
+  EXPECT_EQ(*pdb.atoms[0].b_factor, 15.23);
+  EXPECT_EQ(*pdb.atoms[1].b_factor, 7.5);
+  EXPECT_EQ(*pdb.atoms[2].b_factor, -0.01);
+  EXPECT_FALSE(pdb.atoms[0].charge.has_value());  // PDB: no partial charges
+  // mmCIF through gemmi's structure model, and through the bare _atom_site table (no auth_seq_id).
+  const std::string header =
+      "data_test\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n_atom_site.label_atom_id\n"
+      "_atom_site.label_comp_id\n_atom_site.label_asym_id\n_atom_site.label_entity_id\n_atom_site.label_seq_id\n"
+      "_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n";
+  const std::string with_auth =
+      "data_test\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n_atom_site.label_atom_id\n"
+      "_atom_site.label_comp_id\n_atom_site.label_asym_id\n_atom_site.label_entity_id\n_atom_site.label_seq_id\n"
+      "_atom_site.auth_seq_id\n_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n"
+      "_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n"
+      "ATOM 1 N N ALA A 1 1 1 A 1 1.000 0.000 0.000 1.00 12.345\n"
+      "ATOM 2 C CA ALA A 1 1 1 A 1 2.500 0.000 0.000 1.00 99.99\n";
+  const auto cif = read_structure(write("b.cif", with_auth));
+  ASSERT_EQ(cif.atoms.size(), 2u);
+  EXPECT_EQ(*cif.atoms[0].b_factor, 12.345);
+  EXPECT_EQ(*cif.atoms[1].b_factor, 99.99);
+  const auto bare = read_structure(write("bare.cif", header + "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00 12.345\n"
+                                                               "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00 99.99\n"));
+  ASSERT_EQ(bare.atoms.size(), 2u);
+  EXPECT_EQ(*bare.atoms[0].b_factor, 12.345);
+  EXPECT_EQ(*bare.atoms[1].b_factor, 99.99);
 }
 
 TEST_F(Structure, RadiusTableFile) {

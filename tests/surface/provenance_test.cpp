@@ -43,6 +43,27 @@ TEST(Provenance, EveryVertexGetsEveryFieldOfItsAtom) {
   EXPECT_EQ(mesh.text_attributes.at("vertex_atom_name").dictionary.size(), 2u);
 }
 
+// B-factors (PDB, mmCIF) and charges (PQR) follow each vertex's atom; a value the atoms do not have is
+// not written (no made-up zeros), and one left from an earlier call is removed.
+TEST(Provenance, BFactorsAndChargesFollowTheAtomsThatHaveThem) {
+  std::vector<Atom> atoms = {make_atom(7, "CA", "C", "LYS", 42, ' ', "A", 1), make_atom(9, "OG", "O", "SER", 52, ' ', "A", 1)};
+  atoms[0].b_factor = 15.23, atoms[1].b_factor = 7.5;
+  Mesh mesh;
+  mesh.positions.resize(3);
+  mesh.integer_attributes["atomid"] = {1, 0, 1};
+  add_atom_provenance(mesh, atoms);
+  EXPECT_EQ(mesh.real_attributes.at("vertex_b_factor"), (std::vector<double>{7.5, 15.23, 7.5}));
+  EXPECT_EQ(mesh.real_attributes.count("vertex_charge"), 0u);
+  for (auto& a : atoms) a.b_factor.reset();
+  atoms[0].charge = -0.5, atoms[1].charge = 0.25;
+  add_atom_provenance(mesh, atoms);
+  EXPECT_EQ(mesh.real_attributes.at("vertex_charge"), (std::vector<double>{0.25, -0.5, 0.25}));
+  EXPECT_EQ(mesh.real_attributes.count("vertex_b_factor"), 0u);
+  atoms[1].charge.reset();  // not every atom has one: none is written
+  add_atom_provenance(mesh, atoms);
+  EXPECT_EQ(mesh.real_attributes.count("vertex_charge"), 0u);
+}
+
 TEST(Provenance, RefusesAMeshWithoutValidAtomIndices) {
   Mesh mesh;
   mesh.positions.resize(1);

@@ -15,7 +15,12 @@ namespace spheremap {
 struct Atom {
   Vec3 position{};
   double radius = 0;  // Å
-  double charge = 0;  // from PQR files; 0 otherwise
+  /// Partial charge (e), from the charge column of PQR files; absent for PDB and mmCIF files.
+  std::optional<double> charge;
+  /// Isotropic B-factor (Å²), from PDB and mmCIF files (the column tools also use to carry any per-atom
+  /// value: conservation, hydrophobicity, ...); absent for PQR files, which have no such column. The
+  /// decimal the file wrote (gemmi keeps it as a float; its shortest decimal is taken back).
+  std::optional<double> b_factor;
   std::int32_t serial = 0;
   std::string name;          // atom name, e.g. "CA"
   std::string element;       // upper case, e.g. "C", "FE"
@@ -56,7 +61,7 @@ struct Molecule {
   StructureReport report;
 };
 
-/// Reads PDB, mmCIF (both optionally .gz) through gemmi, or PQR (radius and charge columns), chosen by
+/// Reads PDB, mmCIF (both optionally .gz) through gemmi (B-factors too), or PQR (radius and charge columns), chosen by
 /// extension (.pdb .ent .cif .mmcif .pqr, with an optional .gz). Keeps, by default, the first model,
 /// the most occupied alternate location of each residue (ties: the first letter), no hydrogens, no
 /// waters, all other HETATM groups and all chains; radii from Bondi (1964) per element unless
