@@ -108,7 +108,7 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int
     const std::string icode = text(row, 13, "");
     raw.atom.insertion_code = icode.empty() ? ' ' : icode[0];
     raw.occupancy = gemmi::cif::as_number(text(row, 14, "1"), 1);
-    raw.atom.b_factor = gemmi::cif::as_number(text(row, 16, "0"), 0);
+    if (row.has2(16)) raw.atom.b_factor = gemmi::cif::as_number(row.str(16));  // else none, not a zero
     int model_number = model;
     std::from_chars(wanted.data(), wanted.data() + wanted.size(), model_number);
     raw.atom.model = model_number;

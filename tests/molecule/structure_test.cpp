@@ -194,6 +194,16 @@ TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
   ASSERT_EQ(bare.atoms.size(), 2u);
   EXPECT_EQ(*bare.atoms[0].b_factor, 12.345);
   EXPECT_EQ(*bare.atoms[1].b_factor, 99.99);
+  // A table without the column (or with '?' in it) gives no B-factor, not a zero.
+  const auto without = read_structure(write("none.cif", header.substr(0, header.rfind("_atom_site.B_iso_or_equiv")) +
+                                                          "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00\n"
+                                                          "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00\n"));
+  ASSERT_EQ(without.atoms.size(), 2u);
+  EXPECT_FALSE(without.atoms[0].b_factor.has_value());
+  const auto unknown = read_structure(write("unknown.cif", header + "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00 ?\n"
+                                                                  "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00 4.5\n"));
+  EXPECT_FALSE(unknown.atoms[0].b_factor.has_value());
+  EXPECT_EQ(*unknown.atoms[1].b_factor, 4.5);
 }
 
 TEST_F(Structure, RadiusTableFile) {
