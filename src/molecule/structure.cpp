@@ -349,10 +349,10 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
                                           kUnknownElementRadius));
   if (molecule.atoms.size() < 2)
     throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
-                                 "at least two. Check --chains and --model, or keep more atoms ({})",
+                                 "at least two. Check --chains and --model, or keep more atoms (--keep-waters, "
+                                 "--keep-hydrogens{})",
                                  path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
-                                 options.keep_hetero ? "--keep-waters, --keep-hydrogens"
-                                                     : "--keep-waters, --keep-hydrogens, without --no-hetero"));
+                                 options.keep_hetero ? "" : ", without --no-hetero"));
   return molecule;
 }
 

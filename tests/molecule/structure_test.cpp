@@ -33,9 +33,9 @@ class Structure : public testing::Test {
 
 // A PDB record in fixed columns.
 std::string record(const char* kind, int serial, const char* name, char altloc, const char* residue, char chain,
-                   int number, double x, double y, double z, double occupancy, const char* element) {
+                   int number, double x, double y, double z, double occupancy, const char* element, double b_factor = 0) {
   return fmt::format("{:<6}{:>5} {:<4}{}{:>3} {}{:>4}    {:>8.3f}{:>8.3f}{:>8.3f}{:>6.2f}{:>6.2f}          {:>2}\n", kind,
-                     serial, name, altloc, residue, chain, number, x, y, z, occupancy, 0.0, element);
+                     serial, name, altloc, residue, chain, number, x, y, z, occupancy, b_factor, element);
 }
 
 std::string small_pdb() {
@@ -46,13 +46,6 @@ std::string small_pdb() {
          record("ATOM", 5, " C", ' ', "GLY", 'B', 2, 12.000, 7.000, -4.000, 1, "C") +
          record("HETATM", 6, "FE", ' ', "HEM", 'A', 3, 10.000, 5.000, -4.000, 1, "FE") +
          record("HETATM", 7, " O", ' ', "HOH", 'A', 4, 9.000, 5.000, -4.000, 1, "O") + "END\n";
-}
-
-// The same record with a B-factor (columns 61-66).
-std::string record_with_b(int serial, const char* name, const char* residue, int number, double x, double b,
-                          const char* element) {
-  return fmt::format("ATOM  {:>5} {:<4} {:>3} A{:>4}    {:>8.3f}{:>8.3f}{:>8.3f}{:>6.2f}{:>6.2f}          {:>2}\n", serial,
-                     name, residue, number, x, 0.0, 0.0, 1.0, b, element);
 }
 
 TEST(Radii, BondiTableAndCustomTables) {
@@ -164,9 +157,10 @@ TEST_F(Structure, BadInputsGiveAClearError) {
 // B-factors are the column users fill with any per-atom value: each must come out as the decimal in the
 // file (gemmi holds it as a float; 15.23f widened is 15.229999542236328).
 TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
-  const auto pdb = read_structure(write("b.pdb", record_with_b(1, " N", "ALA", 1, 1.0, 15.23, "N") +
-                                                    record_with_b(2, " CA", "ALA", 1, 2.5, 7.5, "C") +
-                                                    record_with_b(3, " C", "ALA", 1, 4.0, -0.01, "C") + "END\n"));
+  const auto pdb = read_structure(write("b.pdb", record("ATOM", 1, " N", ' ', "ALA", 'A', 1, 1.0, 0, 0, 1, "N", 15.23) +
+                                                    record("ATOM", 2, " CA", ' ', "ALA", 'A', 1, 2.5, 0, 0, 1, "C", 7.5) +
+                                                    record("ATOM", 3, " C", ' ', "ALA", 'A', 1, 4.0, 0, 0, 1, "C", -0.01) +
+                                                    "END\n"));
   ASSERT_EQ(pdb.atoms.size(), 3u);
   for (const auto& a : pdb.atoms) ASSERT_TRUE(a.b_factor.has_value());
   EXPECT_EQ(*pdb.atoms[0].b_factor, 15.23);
@@ -174,17 +168,16 @@ TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
   EXPECT_EQ(*pdb.atoms[2].b_factor, -0.01);
   EXPECT_FALSE(pdb.atoms[0].charge.has_value());  // PDB: no partial charges
   // mmCIF through gemmi's structure model, and through the bare _atom_site table (no auth_seq_id).
-  const std::string header =
+  const std::string labels =
       "data_test\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n_atom_site.label_atom_id\n"
-      "_atom_site.label_comp_id\n_atom_site.label_asym_id\n_atom_site.label_entity_id\n_atom_site.label_seq_id\n"
+      "_atom_site.label_comp_id\n_atom_site.label_asym_id\n_atom_site.label_entity_id\n_atom_site.label_seq_id\n";
+  const std::string values =
       "_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n";
-  const std::string with_auth =
-      "data_test\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n_atom_site.label_atom_id\n"
-      "_atom_site.label_comp_id\n_atom_site.label_asym_id\n_atom_site.label_entity_id\n_atom_site.label_seq_id\n"
-      "_atom_site.auth_seq_id\n_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n"
-      "_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n"
-      "ATOM 1 N N ALA A 1 1 1 A 1 1.000 0.000 0.000 1.00 12.345\n"
-      "ATOM 2 C CA ALA A 1 1 1 A 1 2.500 0.000 0.000 1.00 99.99\n";
+  const std::string header = labels + values;
+  const std::string with_auth = labels + "_atom_site.auth_seq_id\n_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n" +
+                                values +
+                                "ATOM 1 N N ALA A 1 1 1 A 1 1.000 0.000 0.000 1.00 12.345\n"
+                                "ATOM 2 C CA ALA A 1 1 1 A 1 2.500 0.000 0.000 1.00 99.99\n";
   const auto cif = read_structure(write("b.cif", with_auth));
   ASSERT_EQ(cif.atoms.size(), 2u);
   EXPECT_EQ(*cif.atoms[0].b_factor, 12.345);
