@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 #include "spheremap/shapes.hpp"
 
 namespace spheremap::cli {

@@ -4,7 +4,7 @@
 
 #include "commands.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 
 namespace spheremap::cli {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/atomic_file.hpp"
 #include "spheremap/metrics/table.hpp"
 #include "spheremap/render/plot.hpp"
 

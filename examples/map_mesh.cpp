@@ -5,6 +5,7 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 #include "spheremap/metrics/distortion.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/topology/prepare.hpp"

@@ -32,7 +32,7 @@
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/atomic_file.hpp"
 
 namespace spheremap {
 namespace {

@@ -12,7 +12,9 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/io/atomic_file.hpp"
 #include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/handles.hpp"
 #include "spheremap/surface/provenance.hpp"

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 #include "spheremap/mesh.hpp"
 #include "spheremap/pipeline.hpp"
 #include "spheremap/shapes.hpp"

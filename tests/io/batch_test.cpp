@@ -23,7 +23,7 @@
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 #include "spheremap/shapes.hpp"
 
 extern char** environ;

@@ -1,6 +1,9 @@
 // Tests of read_polygon_soup, write_ply and write_file_atomically.
 #include "spheremap/io/mesh_io.hpp"
 
+#include "spheremap/io/atomic_file.hpp"
+#include "spheremap/io/ply.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "spheremap/error.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/ply.hpp"
 #include "spheremap/pipeline.hpp"
 #include "spheremap/shapes.hpp"
 

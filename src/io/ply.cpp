@@ -1,5 +1,7 @@
 // write_ply: the file is built in pieces of about a megabyte (the bytes do not depend on the pieces),
 // each appended to a temporary file that is renamed over the target when complete (AtomicFile).
+#include "spheremap/io/ply.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -10,7 +12,7 @@
 
 #include <fmt/format.h>
 
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/atomic_file.hpp"
 
 namespace spheremap {
 namespace {
