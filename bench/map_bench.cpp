@@ -9,7 +9,7 @@
 #include <map>
 
 #include "../src/sphere/harmonic.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/shapes.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/topology/connectivity.hpp"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "spheremap/error.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 
 namespace fs = std::filesystem;
 

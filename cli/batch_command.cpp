@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "spheremap/batch.hpp"
+#include "spheremap/pipeline/batch.hpp"
 #include "spheremap/error.hpp"
 
 namespace spheremap::cli {

@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 
 namespace spheremap::cli {
 

@@ -16,7 +16,7 @@
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/mesh.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/shapes.hpp"
 
 namespace spheremap {

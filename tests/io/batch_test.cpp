@@ -1,7 +1,7 @@
 // Batch runs: input expansion and names, the summary (built from the folders, RFC 4180), the runner
 // (a broken input never stops the others, resume, --force, --retry-errors, options check, lock), and the
 // CLI killed in the middle of a batch.
-#include "spheremap/batch.hpp"
+#include "spheremap/pipeline/batch.hpp"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/io/ply.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/shapes.hpp"
 
 namespace spheremap {

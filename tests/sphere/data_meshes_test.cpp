@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "spheremap/error.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 
 namespace spheremap {
 namespace {

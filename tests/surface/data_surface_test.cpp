@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../test_support.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/topology/components.hpp"
 
 namespace spheremap {

@@ -1,4 +1,4 @@
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,6 +1,6 @@
 // Batch runs (see include/spheremap/batch.hpp): input expansion, output names, run folders as the
 // state of a batch, the summary built from them, and the parallel runner.
-#include "spheremap/batch.hpp"
+#include "spheremap/pipeline/batch.hpp"
 
 #include <fcntl.h>
 #include <glob.h>

@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 
 namespace spheremap {
 
