@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "spheremap/error.hpp"
-#include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/pipeline/molecular_surface.hpp"
 
 namespace fs = std::filesystem;
 

@@ -1,5 +1,6 @@
 // spheremap batch: many inputs (files, folders, globs, lists), several weightings, in parallel,
-// resumable; a progress bar on a terminal, one line per input otherwise (see include/spheremap/batch.hpp).
+// resumable; a progress bar on a terminal, one line per input otherwise (see
+// include/spheremap/pipeline/batch.hpp).
 #include <sched.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -9,8 +10,8 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -63,11 +64,10 @@ std::string duration_text(double seconds) {
 
 struct BatchState {
   std::vector<std::string> inputs;
-  std::string output, weights = "uniform", solver = "direct", component;
+  std::string output;
   int jobs = 0;
-  MapJobOptions options;
-  StructureCliOptions structure;
-  bool no_repair = false, quiet = false, force = false, retry_errors = false;
+  MapCliOptions map;
+  bool quiet = false, force = false, retry_errors = false;
 };
 
 class Reporter {
@@ -138,149 +138,114 @@ class Reporter {
   bool bar_shown_ = false;
 };
 
+// Ctrl-C once: no new input is started; twice: the running ones are abandoned, the summary written.
+BatchCallbacks interrupt_callbacks(const BatchState& s, const BatchOptions& batch,
+                                   const std::vector<BatchInput>& inputs, Reporter& reporter) {
+  BatchCallbacks callbacks;
+  auto announced = std::make_shared<bool>(false);
+  callbacks.on_tick = [&s, &batch, &inputs, &reporter, announced](const BatchProgress& progress) {
+    if (!*announced && !s.quiet) {
+      *announced = true;
+      std::cerr << fmt::format("spheremap batch: {} input(s) x {} weighting(s) into {}: {} already complete, "
+                               "{} to run, {} at a time\n",
+                               progress.inputs, batch.weights.size(), s.output, progress.already_done,
+                               progress.inputs - progress.already_done,
+                               std::min<std::size_t>(static_cast<std::size_t>(batch.jobs),
+                                                     progress.inputs - progress.already_done));
+    }
+    if (g_signals >= 2) {
+      // Abandon the running inputs: they leave no report.json (so they rerun on resume) and at
+      // most temporary files (removed on resume). Record what is complete, then end now.
+      reporter.clear_bar();
+      std::cerr << "spheremap batch: interrupted again: abandoning the running inputs\n";
+      try {
+        write_batch_summary(s.output, inputs, batch.weights);
+      } catch (const std::exception& e) {
+        std::cerr << "spheremap batch: " << e.what() << "\n";
+      }
+      std::cerr << std::flush;
+      std::_Exit(128 + static_cast<int>(g_last_signal));
+    }
+    reporter.tick(progress);
+  };
+  callbacks.on_finished = [&reporter](const BatchInputOutcome& outcome, const BatchProgress& progress) {
+    reporter.finished(outcome, progress);
+  };
+  auto stop_announced = std::make_shared<bool>(false);
+  callbacks.stop = [&reporter, stop_announced]() {
+    if (g_signals == 0) return BatchStop::kContinue;
+    if (!*stop_announced) {
+      *stop_announced = true;
+      reporter.clear_bar();
+      std::cerr << "spheremap batch: interrupted: no new input is started; the running ones finish "
+                   "(interrupt again to abandon them)\n";
+    }
+    return BatchStop::kFinishRunning;
+  };
+  return callbacks;
+}
+
+// The last line: counts by status, where the summary is; the exit code (128 + signal when interrupted).
+int report_end(const BatchState& s, const BatchOptions& batch, const BatchResult& result, std::size_t inputs) {
+  std::size_t counts[4] = {0, 0, 0, 0};
+  for (const auto& row : result.rows) {
+    const auto status = row.at("status").get<std::string>();
+    ++counts[status == "ok" ? 0 : status == "not-certified" ? 1 : status == "error" ? 2 : 3];
+  }
+  const bool interrupted = g_signals > 0;
+  const int code = interrupted ? 128 + static_cast<int>(g_last_signal) : result.exit_code;
+  if (!s.quiet || code != 0) {
+    std::string text = fmt::format("{} input(s) x {} weighting(s): {} ok, {} not certified, {} error(s)", inputs,
+                                   batch.weights.size(), counts[0], counts[1], counts[2]);
+    if (counts[3]) text += fmt::format(", {} pending", counts[3]);
+    text += fmt::format(" ({} run now, {} already complete, {:.1f} s); summary: {}", result.progress.finished,
+                        result.progress.already_done, result.progress.elapsed_seconds,
+                        (std::filesystem::path(s.output) / kSummaryCsvFile).string());
+    if (interrupted) text += "; interrupted: run the same command again to resume";
+    std::cout << text << "\n";
+  }
+  return code;
+}
+
+int run_batch_command(BatchState& s) {
+  s.map.apply();
+  BatchOptions batch;
+  batch.weights = s.map.weightings();
+  batch.job = s.map.job;
+  batch.jobs = s.jobs > 0 ? s.jobs : available_cores();
+  batch.force = s.force;
+  batch.retry_errors = s.retry_errors;
+  const auto inputs = name_batch_inputs(expand_batch_inputs(s.inputs));
+  Reporter reporter(inputs, batch.weights, s.quiet);
+  install_signal_handlers();
+  const BatchResult result = run_batch(s.output, inputs, batch, interrupt_callbacks(s, batch, inputs, reporter));
+  reporter.clear_bar();
+  return report_end(s, batch, result, inputs.size());
+}
+
 }  // namespace
 
 Command add_batch_command(CLI::App& app) {
-  auto state = std::make_shared<BatchState>();
-  auto& s = *state;
-  auto* command = app.add_subcommand(
-      "batch",
+  const auto made = new_command<BatchState>(
+      app, "batch",
       "Map many meshes and structures (files, folders, glob patterns, @lists) in parallel into one folder each, "
       "with a summary (summary.csv, summary.jsonl); re-running resumes");
+  auto& s = *made.state;
+  CLI::App* command = made.app;
   command->add_option("inputs", s.inputs,
                       "Inputs: files; folders (their .obj .off .ply .stl .pdb .ent .cif .mmcif .pqr (.gz) files, not "
                       "recursive); glob patterns ('data/*.pdb', quoted or expanded by the shell); @LIST or LIST.txt "
                       "(one input per line, relative to the list's folder)")
       ->required();
-  command->add_option("-o,--output", s.output,
-                      "Output root: one folder per input (per weighting with several), summary.csv, summary.jsonl")
-      ->required();
+  add_output_option(command, s.output,
+                    "Output root: one folder per input (per weighting with several), summary.csv, summary.jsonl");
   command->add_option("--jobs", s.jobs, "Inputs mapped at once (default: all cores; each needs its own memory)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--weights", s.weights,
-                      "Harmonic weights, comma-separated: uniform (default), cotan, mean-value; with several, one "
-                      "subfolder per weighting (each input is read and surfaced once)");
-  command->add_option("--solver", s.solver, "direct (CHOLMOD/UMFPACK, default) or gauss-seidel")
-      ->check(CLI::IsMember({"direct", "gauss-seidel"}));
-  command->add_option("--component", s.component, "Meshes with several components: 'largest' or a component number");
-  command->add_option("--weld-tolerance", s.options.prepare.weld_tolerance,
-                      "Weld vertices closer than this (default 0: exactly coincident only)")
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--collapse-floor", s.options.map.collapse_floor,
-                      "Normalized area ratio below which a triangle counts as collapsed (default 1e-6)")
-      ->check(CLI::PositiveNumber);
-  command->add_flag("--ascii", s.options.ascii, "Write ASCII PLY with full precision (%.17g)");
-  add_equalizing_rounds_option(command, s.options.map);
-  command->add_flag("--no-repair", s.no_repair, "The paper's algorithm only: no re-weighting, no untangling");
   command->add_flag("--force", s.force, "Redo every input, even those already complete (also when options changed)");
   command->add_flag("--retry-errors", s.retry_errors, "Redo the inputs that failed before (error.json)");
-  command->add_flag("-q,--quiet", s.quiet, "No progress; print only the inputs that fail or are not certified");
-  s.structure.add(command, s.options);
-
-  return {command, [state]() {
-            auto& s = *state;
-            s.structure.apply(s.options);
-            BatchOptions batch;
-            batch.weights.clear();
-            {
-              std::stringstream list(s.weights);
-              for (std::string name; std::getline(list, name, ',');) {
-                const Weights w = parse_weights(name);
-                if (std::find(batch.weights.begin(), batch.weights.end(), w) != batch.weights.end())
-                  throw InputError(fmt::format("--weights '{}': {} is listed twice", s.weights, name));
-                batch.weights.push_back(w);
-              }
-              if (batch.weights.empty()) throw InputError("--weights: expected uniform, cotan or mean-value (comma-separated)");
-            }
-            s.options.map.solver = s.solver == "gauss-seidel" ? Solver::kGaussSeidel : Solver::kDirect;
-            if (!s.component.empty()) {
-              if (s.component == "largest") {
-                s.options.prepare.component = kComponentLargest;
-              } else {
-                try {
-                  std::size_t used = 0;
-                  const int k = std::stoi(s.component, &used);
-                  if (used != s.component.size() || k < 0) throw std::invalid_argument("not a number");
-                  s.options.prepare.component = k;
-                } catch (const std::exception&) {
-                  throw InputError(fmt::format("--component '{}': expected 'largest' or a component number (0, 1, ...)",
-                                               s.component));
-                }
-              }
-            }
-            s.options.map.repair = !s.no_repair;
-            batch.job = s.options;
-            batch.jobs = s.jobs > 0 ? s.jobs : available_cores();
-            batch.force = s.force;
-            batch.retry_errors = s.retry_errors;
-
-            const auto inputs = name_batch_inputs(expand_batch_inputs(s.inputs));
-            Reporter reporter(inputs, batch.weights, s.quiet);
-            install_signal_handlers();
-            BatchCallbacks callbacks;
-            bool announced = false;
-            callbacks.on_tick = [&](const BatchProgress& progress) {
-              if (!announced && !s.quiet) {
-                announced = true;
-                std::cerr << fmt::format("spheremap batch: {} input(s) x {} weighting(s) into {}: {} already complete, "
-                                         "{} to run, {} at a time\n",
-                                         progress.inputs, batch.weights.size(), s.output, progress.already_done,
-                                         progress.inputs - progress.already_done,
-                                         std::min<std::size_t>(static_cast<std::size_t>(batch.jobs),
-                                                               progress.inputs - progress.already_done));
-              }
-              if (g_signals >= 2) {
-                // Abandon the running inputs: they leave no report.json (so they rerun on resume) and at
-                // most temporary files (removed on resume). Record what is complete, then end now.
-                reporter.clear_bar();
-                std::cerr << "spheremap batch: interrupted again: abandoning the running inputs\n";
-                try {
-                  write_batch_summary(s.output, inputs, batch.weights);
-                } catch (const std::exception& e) {
-                  std::cerr << "spheremap batch: " << e.what() << "\n";
-                }
-                std::cerr << std::flush;
-                std::_Exit(128 + static_cast<int>(g_last_signal));
-              }
-              reporter.tick(progress);
-            };
-            callbacks.on_finished = [&](const BatchInputOutcome& outcome, const BatchProgress& progress) {
-              reporter.finished(outcome, progress);
-            };
-            bool stop_announced = false;
-            callbacks.stop = [&]() {
-              if (g_signals == 0) return BatchStop::kContinue;
-              if (!stop_announced) {
-                stop_announced = true;
-                reporter.clear_bar();
-                std::cerr << "spheremap batch: interrupted: no new input is started; the running ones finish "
-                             "(interrupt again to abandon them)\n";
-              }
-              return BatchStop::kFinishRunning;
-            };
-
-            const BatchResult result = run_batch(s.output, inputs, batch, callbacks);
-            reporter.clear_bar();
-
-            std::size_t counts[4] = {0, 0, 0, 0};
-            for (const auto& row : result.rows) {
-              const auto status = row.at("status").get<std::string>();
-              ++counts[status == "ok" ? 0 : status == "not-certified" ? 1 : status == "error" ? 2 : 3];
-            }
-            const bool interrupted = g_signals > 0;
-            const int code = interrupted ? 128 + static_cast<int>(g_last_signal) : result.exit_code;
-            if (!s.quiet || code != 0) {
-              std::string text = fmt::format("{} input(s) x {} weighting(s): {} ok, {} not certified, {} error(s)",
-                                             inputs.size(), batch.weights.size(), counts[0], counts[1], counts[2]);
-              if (counts[3]) text += fmt::format(", {} pending", counts[3]);
-              text += fmt::format(" ({} run now, {} already complete, {:.1f} s); summary: {}", result.progress.finished,
-                                  result.progress.already_done, result.progress.elapsed_seconds,
-                                  (std::filesystem::path(s.output) / "summary.csv").string());
-              if (interrupted) text += "; interrupted: run the same command again to resume";
-              std::cout << text << "\n";
-            }
-            return code;
-          }};
+  add_quiet_flag(command, s.quiet, "No progress; print only the inputs that fail or are not certified");
+  s.map.add(command, WeightingCount::kSeveral);
+  return {command, [state = made.state]() { return run_batch_command(*state); }};
 }
 
 }  // namespace spheremap::cli

@@ -1,3 +1,4 @@
+// spheremap generate SHAPE -o OUTPUT.ply: generated closed genus-0 meshes.
 #include <iostream>
 
 #include <fmt/format.h>
@@ -18,14 +19,14 @@ struct GenerateState {
 }  // namespace
 
 Command add_generate_command(CLI::App& app) {
-  auto state = std::make_shared<GenerateState>();
-  auto& s = *state;
-  auto* command = app.add_subcommand(
-      "generate", "Write a generated closed genus-0 mesh (for trying spheremap, tests and benchmarks) as PLY");
+  const auto made = new_command<GenerateState>(
+      app, "generate", "Write a generated closed genus-0 mesh (for trying spheremap, tests and benchmarks) as PLY");
+  auto& s = *made.state;
+  CLI::App* command = made.app;
   command->add_option("shape", s.shape, "icosphere | ellipsoid | dumbbell | cube")
       ->required()
       ->check(CLI::IsMember({"icosphere", "ellipsoid", "dumbbell", "cube"}));
-  command->add_option("-o,--output", s.output, "Output .ply file")->required();
+  add_output_option(command, s.output, "Output .ply file");
   command->add_option("--level", s.level, "icosphere/ellipsoid: subdivision level (10*4^level+2 vertices)")->check(CLI::Range(0, 10));
   command->add_option("--stretch", s.stretch, "ellipsoid: length of the z axis (x and y are 1)")->check(CLI::PositiveNumber);
   command->add_option("--n", s.cube_n, "cube: squares per face edge (6n^2+2 vertices)")->check(CLI::Range(1, 10000));
@@ -37,9 +38,9 @@ Command add_generate_command(CLI::App& app) {
   command->add_option("--perturb", s.perturb, "random vertex offsets, in mean edge lengths")->check(CLI::NonNegativeNumber);
   command->add_option("--seed", s.seed, "random seed for --flips and --perturb");
   command->add_flag("--ascii", s.ascii, "ASCII PLY");
-  command->add_flag("-q,--quiet", s.quiet, "Print nothing on success");
+  add_quiet_flag(command, s.quiet);
 
-  return {command, [state]() {
+  return {command, [state = made.state]() {
             auto& s = *state;
             Mesh mesh = s.shape == "icosphere"   ? make_icosphere(s.level)
                         : s.shape == "ellipsoid" ? make_ellipsoid(s.level, 1, 1, s.stretch)

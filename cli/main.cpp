@@ -1,4 +1,4 @@
-// The spheremap command line: a thin layer over the library (see include/spheremap/pipeline.hpp).
+// The spheremap command line: a thin layer over the library (see include/spheremap/pipeline/).
 // Each subcommand lives in its own file (commands.hpp); this file registers and dispatches them.
 #include <iostream>
 

@@ -1,3 +1,4 @@
+// spheremap surface INPUT -o OUTPUT.ply: a structure's molecular surface, every component, as PLY.
 #include <iostream>
 
 #include <fmt/format.h>
@@ -5,6 +6,7 @@
 #include "commands.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/ply.hpp"
+#include "spheremap/pipeline/molecular_surface.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -17,17 +19,19 @@ struct SurfaceState {
 }  // namespace
 
 Command add_surface_command(CLI::App& app) {
-  auto state = std::make_shared<SurfaceState>();
-  auto& s = *state;
-  auto* command = app.add_subcommand(
-      "surface", "Write the solvent-excluded surface of a structure (PDB, mmCIF, PQR) as PLY, every component, with atom provenance (and each atom's B-factor, or PQR charge, per vertex)");
+  const auto made = new_command<SurfaceState>(
+      app, "surface",
+      "Write the solvent-excluded surface of a structure (PDB, mmCIF, PQR) as PLY, every component, with atom "
+      "provenance (and each atom's B-factor, or PQR charge, per vertex)");
+  auto& s = *made.state;
+  CLI::App* command = made.app;
   command->add_option("input", s.input, "Structure file: .pdb .ent .cif .mmcif (also .gz) .pqr")->required();
-  command->add_option("-o,--output", s.output, "Output .ply file")->required();
+  add_output_option(command, s.output, "Output .ply file");
   command->add_flag("--ascii", s.options.ascii, "ASCII PLY with full precision (%.17g)");
-  command->add_flag("-q,--quiet", s.quiet, "Print nothing on success");
-  s.structure.add(command, s.options, false);
+  add_quiet_flag(command, s.quiet);
+  s.structure.add(command, s.options, PresetScope::kSurface);
 
-  return {command, [state]() {
+  return {command, [state = made.state]() {
             auto& s = *state;
             s.structure.apply(s.options);
             const Molecule molecule = read_structure(s.input, s.options.structure);
@@ -52,7 +56,7 @@ Command add_surface_command(CLI::App& app) {
               for (std::size_t c = 0; c < result.reports.size(); ++c) {
                 const auto& r = result.reports[c];
                 std::cout << fmt::format("  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} residues\n",
-                                         c, r.kind, r.triangles, r.area, r.volume, r.genus, r.residue_count);
+                                         c, to_string(r.kind), r.triangles, r.area, r.volume, r.genus, r.residue_count);
               }
               if (s.options.simplify.target_edge_length > 0)
                 std::cout << fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g} Å), area {:.1f} -> {:.1f} "

@@ -3,15 +3,17 @@
 #include <cctype>
 #include <iostream>
 #include <limits>
-#include <map>
+#include <set>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
-#include "spheremap/metrics/table.hpp"
+#include "spheremap/render/figure4.hpp"
 #include "spheremap/render/plot.hpp"
+#include "spheremap/reproduction/figure4.hpp"
+#include "spheremap/reproduction/table1.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -30,118 +32,124 @@ std::string file_safe(const std::string& name) {
   return out.empty() ? "unnamed" : out;
 }
 
+void write_chart(const fs::path& output, const std::string& stem, const BarChart& chart) {
+  write_file_atomically(output / (stem + ".svg"), bar_chart_svg(chart));
+  write_png(output / (stem + ".png"), render_bar_chart(chart));
+}
+
+// Figure 4a, one per protocol. Returns the files written.
+std::vector<std::string> write_figure4a(const fs::path& output, const std::vector<ReportSummary>& reports,
+                                        const std::vector<ProtocolSummary>& summaries, Table1Context& context) {
+  std::vector<std::string> written;
+  for (const auto& summary : summaries) {
+    std::vector<ReportSummary> of_protocol;
+    for (const auto& r : reports)
+      if (r.weights == summary.weights) of_protocol.push_back(r);
+    const std::string stem = "figure4a-" + file_safe(summary.weights);
+    write_chart(output, stem, figure4a_chart(octant_histogram(of_protocol), summary.weights, summary.surfaces));
+    written.push_back(stem + ".png/.svg");
+    context.figure_notes.push_back(fmt::format(
+        "`{}.png` / `.svg` (Figure 4a): frequency distribution of the octant areas of the {} surfaces mapped "
+        "with {} weights ({} octants), in bins 3% wide centred on 12.5 ± 3k as the paper's axis labels "
+        "(6.5, 9.5, ... 33.5) suggest; the bar labelled 12.5 holds [11, 14)%.",
+        stem, summary.surfaces, summary.weights, 8 * summary.surfaces));
+  }
+  return written;
+}
+
+// Figure 4b: the triangle areas of the surface with the median triangle count. Returns the files written.
+std::vector<std::string> write_figure4b(const fs::path& output, const std::vector<ReportSummary>& reports,
+                                        Table1Context& context) {
+  const ReportSummary& typical = reports[typical_surface(reports)];
+  const fs::path surface_file = typical.source.parent_path() / kSurfaceFile;
+  std::set<std::string> inputs;
+  for (const auto& r : reports) inputs.insert(r.input);
+  const std::size_t distinct = inputs.size();
+  if (!fs::exists(surface_file)) {
+    context.warnings.push_back(
+        fmt::format("Figure 4b not drawn: {} is missing (the typical surface, median triangle count, is {})",
+                    surface_file.string(), typical.input));
+    return {};
+  }
+  const Histogram h = triangle_area_histogram(triangle_areas_of_file(surface_file));
+  const std::string name = fs::path(typical.input).filename().string();
+  write_chart(output, "figure4b", figure4b_chart(h, name, typical.triangles, distinct));
+  context.figure_notes.push_back(fmt::format(
+      "`figure4b.png` / `.svg` (Figure 4b): frequency distribution of the triangle areas of `{}` ({} "
+      "triangles, from `{}`), as % of that surface's mean triangle area, in bins 10% wide labelled by "
+      "their upper edge as in the paper (the bar labelled 10 holds [0, 10)%, i.e. triangles at least "
+      "ten-fold smaller than the mean){}. It is the surface with the median triangle count among the {} "
+      "distinct inputs (lower median; ties by name); the surface does not depend on the weighting.",
+      typical.input, with_thousands(typical.triangles), surface_file.string(),
+      h.edges.back() == std::numeric_limits<double>::infinity()
+          ? "; the last bar holds every triangle of 300% or more"
+          : "",
+      distinct));
+  return {"figure4b.png/.svg"};
+}
+
+void print_summaries(const fs::path& runs_dir, const fs::path& output, std::size_t reports,
+                     const std::vector<ProtocolSummary>& summaries, const Table1Context& context,
+                     const std::vector<std::string>& written) {
+  std::string per_protocol;
+  for (const auto& summary : summaries)
+    per_protocol += fmt::format("{}{}: {}", per_protocol.empty() ? "" : ", ", summary.weights, summary.surfaces);
+  std::cout << fmt::format("{}: {} report.json found ({}); {} error.json (failed runs) and folders "
+                           "without report.json are not in the table\n",
+                           runs_dir.string(), reports, per_protocol, context.error_runs);
+  for (const auto& summary : summaries)
+    std::cout << fmt::format(
+        "  {}: plain algorithm {} folded ({} of {} surfaces correct); final {} folded, {} of {} certified; "
+        "area {:.0f}% ({:.0f}%), angle RMS {:.1f}° ({:.1f}°), octant RMS {:.1f}%\n",
+        summary.weights, summary.plain_folded_total, summary.plain_surfaces_without_folds, summary.surfaces,
+        summary.folded_total, summary.surfaces_certified, summary.surfaces, summary.area_mean_of_means_percent,
+        summary.area_max_of_means_percent, summary.angle_mean_of_rms_degrees, summary.angle_max_of_rms_degrees,
+        summary.octant_rms_pooled_percent);
+  std::cout << fmt::format("  wrote {} and {}\n", (output / "table1.md").string(), fmt::join(written, ", "));
+}
+
+int run_table(const TableState& s) {
+  const fs::path runs_dir = s.runs_dir;
+  const std::vector<fs::path> found = find_reports(runs_dir);
+  if (found.empty())
+    throw InputError(fmt::format("{}: no report.json found (searched every subfolder); run spheremap batch "
+                                 "or spheremap map into this folder first",
+                                 runs_dir.string()));
+  std::vector<ReportSummary> reports;
+  reports.reserve(found.size());
+  for (const auto& report : found) reports.push_back(read_report_file(report));
+
+  const fs::path output = s.output.empty() ? runs_dir : fs::path(s.output);
+  std::error_code error;
+  fs::create_directories(output, error);
+  if (error) throw InputError(fmt::format("{}: cannot create the output folder: {}", output.string(), error.message()));
+
+  const auto summaries = summarize_protocols(reports);
+  Table1Context context;
+  context.runs_dir = runs_dir.string();
+  context.reports_found = static_cast<std::int64_t>(found.size());
+  context.error_runs = static_cast<std::int64_t>(find_files_named(runs_dir, "error.json").size());
+  context.warnings = duplicate_runs(reports);
+  std::vector<std::string> written = write_figure4a(output, reports, summaries, context);
+  for (auto& file : write_figure4b(output, reports, context)) written.push_back(std::move(file));
+
+  write_file_atomically(output / "table1.md", table1_markdown(summaries, reports, context));
+  for (const auto& w : context.warnings) std::cerr << "spheremap: warning: " << w << "\n";
+  if (!s.quiet) print_summaries(runs_dir, output, found.size(), summaries, context, written);
+  return 0;
+}
+
 }  // namespace
 
 Command add_table_command(CLI::App& app) {
-  auto state = std::make_shared<TableState>();
-  auto& s = *state;
-  auto* command = app.add_subcommand(
-      "table",
+  const auto made = new_command<TableState>(
+      app, "table",
       "The paper's Table 1 (table1.md) and Figure 4 (figure4a-WEIGHTS and figure4b, PNG and SVG) from every "
       "report.json under RUNS_DIR (output of spheremap batch, or of several spheremap map runs)");
-  command->add_option("runs_dir", s.runs_dir, "Folder searched recursively for report.json")->required();
-  command->add_option("-o,--output", s.output, "Folder for table1.md and the figures (default: RUNS_DIR)");
-  command->add_flag("-q,--quiet", s.quiet, "Print nothing on success");
-
-  return {command, [state]() {
-            auto& s = *state;
-            const fs::path runs_dir = s.runs_dir;
-            const std::vector<fs::path> reports = find_reports(runs_dir);
-            if (reports.empty())
-              throw InputError(fmt::format("{}: no report.json found (searched every subfolder); run spheremap batch "
-                                           "or spheremap map into this folder first",
-                                           runs_dir.string()));
-            std::vector<RunRecord> records;
-            records.reserve(reports.size());
-            for (const auto& report : reports) records.push_back(read_run_record(report));
-
-            const fs::path output = s.output.empty() ? runs_dir : fs::path(s.output);
-            std::error_code error;
-            fs::create_directories(output, error);
-            if (error)
-              throw InputError(fmt::format("{}: cannot create the output folder: {}", output.string(), error.message()));
-
-            const auto summaries = summarize_protocols(records);
-            Table1Context context;
-            context.runs_dir = runs_dir.string();
-            context.reports_found = static_cast<std::int64_t>(reports.size());
-            context.error_runs = static_cast<std::int64_t>(find_files_named(runs_dir, "error.json").size());
-            context.warnings = duplicate_runs(records);
-            std::vector<std::string> written;
-
-            // Figure 4a, one per protocol.
-            for (const auto& summary : summaries) {
-              std::vector<RunRecord> of_protocol;
-              for (const auto& r : records)
-                if (r.weights == summary.weights) of_protocol.push_back(r);
-              const Histogram h = octant_histogram(of_protocol);
-              const BarChart chart = figure4a_chart(h, summary.weights, summary.surfaces);
-              const std::string stem = "figure4a-" + file_safe(summary.weights);
-              write_file_atomically(output / (stem + ".svg"), bar_chart_svg(chart));
-              write_png(output / (stem + ".png"), render_bar_chart(chart));
-              written.push_back(stem + ".png/.svg");
-              context.figure_notes.push_back(fmt::format(
-                  "`{}.png` / `.svg` (Figure 4a): frequency distribution of the octant areas of the {} surfaces mapped "
-                  "with {} weights ({} octants), in bins 3% wide centred on 12.5 ± 3k as the paper's axis labels "
-                  "(6.5, 9.5, ... 33.5) suggest; the bar labelled 12.5 holds [11, 14)%.",
-                  stem, summary.surfaces, summary.weights, 8 * summary.surfaces));
-            }
-
-            // Figure 4b: the triangle areas of the surface with the median triangle count.
-            const RunRecord& typical = records[typical_surface(records)];
-            const fs::path surface_file = typical.report.parent_path() / "surface.ply";
-            std::size_t distinct = 0;
-            {
-              std::map<std::string, int> inputs;
-              for (const auto& r : records) inputs[r.input] = 1;
-              distinct = inputs.size();
-            }
-            if (fs::exists(surface_file)) {
-              const Histogram h = triangle_area_histogram(triangle_areas_of_file(surface_file));
-              const std::string name = fs::path(typical.input).filename().string();
-              const BarChart chart = figure4b_chart(h, name, typical.triangles, distinct);
-              write_file_atomically(output / "figure4b.svg", bar_chart_svg(chart));
-              write_png(output / "figure4b.png", render_bar_chart(chart));
-              written.push_back("figure4b.png/.svg");
-              context.figure_notes.push_back(fmt::format(
-                  "`figure4b.png` / `.svg` (Figure 4b): frequency distribution of the triangle areas of `{}` ({} "
-                  "triangles, from `{}`), as % of that surface's mean triangle area, in bins 10% wide labelled by "
-                  "their upper edge as in the paper (the bar labelled 10 holds [0, 10)%, i.e. triangles at least "
-                  "ten-fold smaller than the mean){}. It is the surface with the median triangle count among the {} "
-                  "distinct inputs (lower median; ties by name); the surface does not depend on the weighting.",
-                  typical.input, with_thousands(typical.triangles), surface_file.string(),
-                  h.edges.back() == std::numeric_limits<double>::infinity() ? "; the last bar holds every triangle of 300% or more" : "",
-                  distinct));
-            } else {
-              const std::string note = fmt::format(
-                  "Figure 4b not drawn: {} is missing (the typical surface, median triangle count, is {})",
-                  surface_file.string(), typical.input);
-              context.warnings.push_back(note);
-            }
-
-            write_file_atomically(output / "table1.md", table1_markdown(summaries, records, context));
-            for (const auto& w : context.warnings) std::cerr << "spheremap: warning: " << w << "\n";
-            if (!s.quiet) {
-              std::string per_protocol;
-              for (const auto& summary : summaries)
-                per_protocol += fmt::format("{}{}: {}", per_protocol.empty() ? "" : ", ", summary.weights, summary.surfaces);
-              std::cout << fmt::format("{}: {} report.json found ({}); {} error.json (failed runs) and folders "
-                                       "without report.json are not in the table\n",
-                                       runs_dir.string(), reports.size(), per_protocol, context.error_runs);
-              for (const auto& summary : summaries)
-                std::cout << fmt::format(
-                    "  {}: plain algorithm {} folded ({} of {} surfaces correct); final {} folded, {} of {} certified; "
-                    "area {:.0f}% ({:.0f}%), angle RMS {:.1f}° ({:.1f}°), octant RMS {:.1f}%\n",
-                    summary.weights, summary.plain_folded_total, summary.plain_surfaces_without_folds, summary.surfaces,
-                    summary.folded_total, summary.surfaces_certified, summary.surfaces,
-                    summary.area_mean_of_means_percent, summary.area_max_of_means_percent,
-                    summary.angle_mean_of_rms_degrees, summary.angle_max_of_rms_degrees,
-                    summary.octant_rms_pooled_percent);
-              std::cout << fmt::format("  wrote {} and {}\n", (output / "table1.md").string(),
-                                       fmt::join(written, ", "));
-            }
-            return 0;
-          }};
+  made.app->add_option("runs_dir", made.state->runs_dir, "Folder searched recursively for report.json")->required();
+  made.app->add_option("-o,--output", made.state->output, "Folder for table1.md and the figures (default: RUNS_DIR)");
+  add_quiet_flag(made.app, made.state->quiet);
+  return {made.app, [state = made.state]() { return run_table(*state); }};
 }
 
 }  // namespace spheremap::cli

@@ -1,6 +1,7 @@
 // Using spheremap as a library, without the command line: read a mesh, map it, check the certificate,
 // write the sphere. Built with the project (target example_map_mesh):
 //   ./build/example_map_mesh examples/dumbbell.ply out/sphere-from-cpp.ply
+// or against an installed spheremap with find_package (examples/CMakeLists.txt).
 #include <cstdio>
 
 #include "spheremap/error.hpp"

@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh
+scripts/build.sh spheremap_cli  # the library and the command only: no tests, no benchmarks
 ./build/spheremap map examples/dumbbell.ply -o out/example
 echo "outputs: out/example/surface.ply out/example/sphere.ply out/example/report.json"
 ./build/spheremap map /usr/share/pymol/data/demo/il2.pdb -o out/il2

@@ -1,11 +1,17 @@
-// Checks shared by several test files.
+// Helpers and checks shared by several test files: files, a fresh folder per test, the command line.
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -13,6 +19,61 @@
 #include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap::testing_support {
+
+/// The bytes of a file ("" if it cannot be read).
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Writes `bytes` to `path`, creating its folder if missing.
+inline void write_text(const std::filesystem::path& path, const std::string& bytes) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+/// A fixture with a fresh, empty folder of its own (`folder_`, named after the test and the process, so
+/// that tests running at once never share one), removed after the test.
+class FolderTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = std::filesystem::temp_directory_path() / (std::string("spheremap-") + test->test_suite_name() + "-" +
+                                                        std::to_string(::getpid()) + "-" + test->name());
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+
+  /// Writes `bytes` to folder_/name; returns that path.
+  std::filesystem::path write(const std::string& name, const std::string& bytes) const {
+    write_text(folder_ / name, bytes);
+    return folder_ / name;
+  }
+
+  std::filesystem::path folder_;
+};
+
+#ifdef SPHEREMAP_CLI_PATH
+/// What the command printed (stdout and stderr) and its exit code.
+struct CliRun {
+  int exit_code;
+  std::string output;
+};
+
+/// Runs the spheremap command with `arguments` (passed through the shell: quote what needs it).
+inline CliRun run_cli(const std::string& arguments) {
+  const std::string command = std::string(SPHEREMAP_CLI_PATH) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (std::size_t got = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, got);
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
+}
+#endif
 
 /// The structure files of `pdb`/paper77 and `pdb`/misc (../shared/data/pdb), sorted by path.
 inline std::vector<std::filesystem::path> shared_structure_files(const std::filesystem::path& pdb) {

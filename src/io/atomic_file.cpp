@@ -59,7 +59,8 @@ void AtomicFile::commit() {
   const bool closed = std::fclose(stream_) == 0;
   const int close_errno = errno;
   stream_ = nullptr;
-  if (!flushed || !closed) discard_and_fail(fmt::format("cannot write the file ({})", std::strerror(flushed ? close_errno : flush_errno)));
+  if (!flushed || !closed)
+    discard_and_fail(fmt::format("cannot write the file ({})", std::strerror(flushed ? close_errno : flush_errno)));
   std::error_code ec;
   std::filesystem::rename(temporary_, path_, ec);
   if (ec) discard_and_fail(fmt::format("cannot rename '{}' to it ({})", temporary_.string(), ec.message()));

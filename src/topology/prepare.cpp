@@ -320,7 +320,7 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions, const F
   report.components = static_cast<std::int64_t>(component_sizes.size());
   std::int32_t kept = 0;
   if (component_sizes.size() > 1) {
-    if (options.component == kComponentRefuse) {
+    if (options.component.mode == ComponentChoice::Mode::kRefuse) {
       std::vector<std::string> sizes;
       for (std::size_t c = 0; c < component_sizes.size() && c < 8; ++c)
         sizes.push_back(fmt::format("#{}: {} triangles", c, component_sizes[c]));
@@ -330,18 +330,19 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions, const F
           "Choose one with --component largest or --component N",
           name, component_sizes.size(), fmt::join(sizes, ", ")));
     }
-    if (options.component == kComponentLargest) {
+    if (options.component.mode == ComponentChoice::Mode::kLargest) {
       kept = static_cast<std::int32_t>(std::max_element(component_sizes.begin(), component_sizes.end()) -
                                        component_sizes.begin());
-    } else if (options.component >= 0 && options.component < static_cast<int>(component_sizes.size())) {
-      kept = options.component;
+    } else if (options.component.mode == ComponentChoice::Mode::kNumbered && options.component.number >= 0 &&
+               options.component.number < static_cast<std::int32_t>(component_sizes.size())) {
+      kept = options.component.number;
     } else {
       throw MeshRefused(fmt::format("{}: --component {} does not exist: the mesh has components 0 to {}", name,
-                                    options.component, component_sizes.size() - 1));
+                                    options.component.number, component_sizes.size() - 1));
     }
-  } else if (options.component >= 1) {
+  } else if (options.component.mode == ComponentChoice::Mode::kNumbered && options.component.number >= 1) {
     throw MeshRefused(fmt::format("{}: --component {} does not exist: the mesh has a single component (0)", name,
-                                  options.component));
+                                  options.component.number));
   }
   report.component_kept = kept;
 

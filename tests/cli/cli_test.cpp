@@ -1,18 +1,14 @@
 // The command line as a user runs it: exit codes, files written (or not), byte-identical reruns.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "../test_support.hpp"
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/mesh.hpp"
@@ -24,39 +20,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
-  int exit_code;
-  std::string output;  // stdout and stderr
-};
+using testing_support::run_cli;
+using testing_support::slurp;
 
-Run run_cli(const std::string& arguments) {
-  const std::string command = std::string(SPHEREMAP_CLI_PATH) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (std::size_t got = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, got);
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-class Cli : public testing::Test {
- protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("spheremap-cli-" + std::to_string(::getpid()) + "-" +
-                                           testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  fs::path folder_;
-};
+class Cli : public testing_support::FolderTest {};
 
 std::string write_obj(const fs::path& path, const Mesh& mesh) {
   std::ofstream out(path);

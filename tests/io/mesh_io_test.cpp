@@ -1,9 +1,6 @@
 // Tests of read_polygon_soup, write_ply and write_file_atomically.
 #include "spheremap/io/mesh_io.hpp"
 
-#include "spheremap/io/atomic_file.hpp"
-#include "spheremap/io/ply.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -22,7 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "spheremap/error.hpp"
+#include "spheremap/io/atomic_file.hpp"
+#include "spheremap/io/ply.hpp"
 
 namespace spheremap {
 namespace {
@@ -30,33 +30,11 @@ namespace {
 namespace fs = std::filesystem;
 
 using Faces = std::vector<std::vector<std::int32_t>>;
+using testing_support::slurp;
 
 /// A fresh folder per test, removed afterwards.
-class MeshIoTest : public ::testing::Test {
+class MeshIoTest : public testing_support::FolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("spheremap_mesh_io_") + info->test_suite_name() + "_" + info->name() + "_" +
-               std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    const fs::path path = folder_ / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
-
-  static std::string read_bytes(const fs::path& path) {
-    std::ifstream stream(path, std::ios::binary);
-    std::ostringstream buffer;
-    buffer << stream.rdbuf();
-    return buffer.str();
-  }
-
   /// Expects read_polygon_soup to throw InputError whose message names the file and contains `fragment`.
   static void expect_input_error(const fs::path& path, const std::string& fragment) {
     try {
@@ -68,8 +46,6 @@ class MeshIoTest : public ::testing::Test {
       EXPECT_NE(message.find(fragment), std::string::npos) << "expected \"" << fragment << "\" in: " << message;
     }
   }
-
-  fs::path folder_;
 };
 
 class ObjReader : public MeshIoTest {};
@@ -168,7 +144,7 @@ TEST_F(PlyWriter, HeaderListsRealAttributesThenIntegerAttributesInNameOrder) {
       "element face 4\n"
       "property list uchar int vertex_indices\n"
       "end_header\n";
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = slurp(path);
   EXPECT_EQ(bytes.substr(0, expected_header.size()), expected_header);
   const std::size_t vertex_bytes = 4 * (5 * 8 + 4);
   const std::size_t face_bytes = 4 * (1 + 3 * 4);
@@ -182,7 +158,7 @@ TEST_F(PlyWriter, TextAttributesAreByteListsThatReadersSkip) {
   for (const bool ascii : {false, true}) {
     const fs::path path = folder_ / (ascii ? "text-ascii.ply" : "text.ply");
     write_ply(path, mesh, {.ascii = ascii});
-    const std::string bytes = read_bytes(path);
+    const std::string bytes = slurp(path);
     EXPECT_NE(bytes.find("property int label\n" + header_line + "element face 4\n"), std::string::npos);
     if (ascii) {
       EXPECT_NE(bytes.find(" 2 67 65\n"), std::string::npos);      // "CA"
@@ -210,7 +186,7 @@ TEST_F(PlyWriter, AsciiWritesSeventeenDigitsAndPlainIntegers) {
   mesh.integer_attributes["label"] = {7, -3, 0};
   const fs::path path = folder_ / "ascii.ply";
   write_ply(path, mesh, {.ascii = true});
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = slurp(path);
   const std::string body = bytes.substr(bytes.find("end_header\n") + 11);
   EXPECT_EQ(body, "0.10000000000000001 1 -0 7\n0 1 0 -3\n0 0 1 0\n3 0 1 2\n");
 }
@@ -220,7 +196,7 @@ TEST_F(PlyWriter, OutputIsDeterministic) {
   for (const bool ascii : {false, true}) {
     write_ply(folder_ / "a.ply", mesh, {.ascii = ascii});
     write_ply(folder_ / "b.ply", mesh, {.ascii = ascii});
-    EXPECT_EQ(read_bytes(folder_ / "a.ply"), read_bytes(folder_ / "b.ply"));
+    EXPECT_EQ(slurp(folder_ / "a.ply"), slurp(folder_ / "b.ply"));
   }
 }
 
@@ -232,7 +208,7 @@ TEST_F(PlyWriter, AtomicWriteLeavesOnlyTheTargetFile) {
   for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"notes.txt", "old.ply"}));
-  EXPECT_EQ(read_bytes(folder_ / "notes.txt"), "hello\n");
+  EXPECT_EQ(slurp(folder_ / "notes.txt"), "hello\n");
   EXPECT_EQ(read_polygon_soup(folder_ / "old.ply").positions.size(), 4U);
 }
 
@@ -252,7 +228,7 @@ TEST_F(PlyWriter, FilesOfManyMegabytesAreWrittenInPiecesWithNothingLostOrRepeate
   for (const bool ascii : {false, true}) {
     const fs::path path = folder_ / (ascii ? "large-ascii.ply" : "large.ply");
     write_ply(path, mesh, {.ascii = ascii});
-    const std::string bytes = read_bytes(path);
+    const std::string bytes = slurp(path);
     EXPECT_GT(bytes.size(), std::size_t{3} << 20);
     const std::size_t body = bytes.find("end_header\n") + 11;
     if (!ascii) {
@@ -281,12 +257,12 @@ TEST_F(PlyWriter, AnAtomicFileLeftUncommittedLeavesTheTargetAsItWas) {
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
   EXPECT_EQ(names, (std::vector<std::string>{"kept.txt"}));
-  EXPECT_EQ(read_bytes(folder_ / "kept.txt"), "previous contents");
+  EXPECT_EQ(slurp(folder_ / "kept.txt"), "previous contents");
   AtomicFile file(folder_ / "kept.txt");
   file.append("new ");
   file.append("contents");
   file.commit();
-  EXPECT_EQ(read_bytes(folder_ / "kept.txt"), "new contents");
+  EXPECT_EQ(slurp(folder_ / "kept.txt"), "new contents");
 }
 
 TEST_F(PlyWriter, UnwritableTargetThrowsInputErrorAndLeavesNoTemporaryFile) {
@@ -509,7 +485,7 @@ TEST_F(PlyReader, ReadsLittleEndianFloatVerticesAndSizedTypeNames) {
 TEST_F(PlyReader, ReportsTruncatedBinaryFiles) {
   Mesh mesh = tetrahedron_with_attributes();
   write_ply(folder_ / "whole.ply", mesh);
-  const std::string bytes = read_bytes(folder_ / "whole.ply");
+  const std::string bytes = slurp(folder_ / "whole.ply");
   const std::size_t header_size = bytes.find("end_header\n") + 11;
   const std::size_t vertex_bytes = 5 * 8 + 4;
   expect_input_error(write("cut_vertices.ply", bytes.substr(0, header_size + 2 * vertex_bytes + 5)),
@@ -677,8 +653,8 @@ TEST_F(MeshIoErrors, CorruptedFilesNeverCrash) {
   write_ply(folder_ / "binary.ply", mesh);
   write_ply(folder_ / "ascii.ply", mesh, {.ascii = true});
   const std::map<std::string, std::string> originals = {
-      {"binary.ply", read_bytes(folder_ / "binary.ply")},
-      {"ascii.ply", read_bytes(folder_ / "ascii.ply")},
+      {"binary.ply", slurp(folder_ / "binary.ply")},
+      {"ascii.ply", slurp(folder_ / "ascii.ply")},
       {"mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf -1/2/3 -2//1 -3\nf 1 2 3 4\n"},
       {"mesh.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n4 0 1 2 3 255 0 0\n"},
       {"mesh.stl", binary_stl("solid", {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, 0, 0, 0, 0, 1}})},

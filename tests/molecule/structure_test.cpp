@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "../test_support.hpp"
 #include "spheremap/error.hpp"
 
 namespace spheremap {
@@ -15,21 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class Structure : public testing::Test {
- protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("spheremap-structure-" + std::to_string(::getpid()) + "-" +
-                                           testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  fs::path write(const std::string& name, const std::string& text) {
-    std::ofstream(folder_ / name, std::ios::binary) << text;
-    return folder_ / name;
-  }
-  fs::path folder_;
-};
+class Structure : public testing_support::FolderTest {};
 
 // A PDB record in fixed columns.
 std::string record(const char* kind, int serial, const char* name, char altloc, const char* residue, char chain,

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "../test_support.hpp"
 #include "spheremap/error.hpp"
 
 namespace spheremap {
@@ -123,17 +124,7 @@ TEST(Plot, RasterHasBarsAxesAndText) {
   EXPECT_EQ(bitmap_text_width("", 2), 0);
 }
 
-class PlotFiles : public testing::Test {
- protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("spheremap-plot-" + std::to_string(::getpid()) + "-" +
-                                           testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  fs::path folder_;
-};
+class PlotFiles : public testing_support::FolderTest {};
 
 TEST_F(PlotFiles, PngRoundTripsThroughLibpng) {
   RgbImage image;
@@ -146,10 +137,7 @@ TEST_F(PlotFiles, PngRoundTripsThroughLibpng) {
   image.pixels[i + 2] = 30;
   const fs::path path = folder_ / "small.png";
   write_png(path, image);
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  const std::string png = bytes.str();
+  const std::string png = testing_support::slurp(path);
   ASSERT_GT(png.size(), 33u);
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_EQ(png.substr(12, 4), "IHDR");

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../test_support.hpp"
-#include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/pipeline/molecular_surface.hpp"
 #include "spheremap/topology/components.hpp"
 
 namespace spheremap {
@@ -36,7 +36,7 @@ TEST(DataSurface, EveryStructureGivesAClosedGenusZeroOuterSurface) {
     testing_support::expect_closed_oriented_manifold(surface.mesh);
     ASSERT_FALSE(surface.components.empty());
     EXPECT_EQ(surface.components.front().genus, 0);
-    EXPECT_EQ(surface.reports.front().kind, "outer");
+    EXPECT_EQ(surface.reports.front().kind, SurfaceComponentKind::kOuter);
     if (repair.genus_before != 0) {
       ++repaired;
       EXPECT_FALSE(repair.changes.empty());

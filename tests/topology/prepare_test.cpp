@@ -175,15 +175,15 @@ TEST(Prepare, RefusesPinchedVertexAndSeveralComponents) {
   EXPECT_NE(components.find("2 separate connected components"), std::string::npos) << components;
   EXPECT_NE(components.find("--component"), std::string::npos);
   PrepareOptions largest;
-  largest.component = kComponentLargest;
+  largest.component = ComponentChoice::largest();
   EXPECT_EQ(prepare_mesh(two, largest).mesh.vertex_count(), 4u);
   PrepareOptions second;
-  second.component = 1;
+  second.component = ComponentChoice::numbered(1);
   const auto kept = prepare_mesh(two, second);
   EXPECT_EQ(kept.report.component_kept, 1);
   EXPECT_DOUBLE_EQ(kept.mesh.positions[0][0], 5.0);
   PrepareOptions missing;
-  missing.component = 2;
+  missing.component = ComponentChoice::numbered(2);
   EXPECT_NE(refusal_message(two, missing).find("does not exist"), std::string::npos);
 }
 

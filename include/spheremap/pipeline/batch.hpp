@@ -1,4 +1,6 @@
-// Batch runs: many inputs, several weightings, in parallel, resumable (stage: io; the `batch` command).
+// Batch runs: many inputs, several weightings, in parallel, resumable (stage: pipeline; the `batch`
+// command). The parts: batch_inputs.hpp (inputs and their names), run_folder.hpp (the state of each run),
+// summary.hpp (summary.csv, summary.jsonl, exit code), batch_lock.hpp; this header runs them.
 //
 // The output root holds one folder per input (with several weightings, one subfolder per weighting),
 // each with the outputs of `spheremap map` (write_map_outputs) or an `error.json`, plus `batch.json`
@@ -8,8 +10,7 @@
 // (up to the measured timings of what was redone).
 #pragma once
 
-#include <atomic>
-#include <cstdint>
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -17,117 +18,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "spheremap/pipeline/batch_inputs.hpp"
+#include "spheremap/pipeline/batch_lock.hpp"
 #include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/pipeline/run_folder.hpp"
+#include "spheremap/pipeline/summary.hpp"
 
 namespace spheremap {
-
-/// True for the files a batch takes from a folder: meshes (.obj .off .ply .stl, any case) and
-/// structures (is_structure_file: .pdb .ent .cif .mmcif .pqr, optionally .gz).
-bool is_batch_input_file(const std::filesystem::path& path);
-
-/// Expands command-line arguments into input files, in order, each file once (the first occurrence
-/// wins; compared after std::filesystem::weakly_canonical):
-/// - an existing folder: its mesh and structure files (is_batch_input_file), not recursive, hidden
-///   files (name starting with '.') left out, sorted by file name (byte order);
-/// - `@LIST`, or an existing file whose name ends in `.txt`: a list, one argument per line (blank lines
-///   and lines starting with '#' ignored, surrounding spaces trimmed), each expanded by these same rules;
-///   relative paths are relative to the list's folder; lists may include lists (8 levels at most);
-/// - an argument that is not an existing path but contains `*`, `?` or `[`: a glob(3) pattern; its
-///   matches, sorted (byte order), are expanded like arguments (as if the shell had expanded it:
-///   files are taken whatever their extension, folders give their files);
-/// - anything else: a file, taken as given, even if missing or of an unknown format (its run then
-///   fails with the reader's message, like `spheremap map`).
-/// Throws InputError if a list cannot be read, lists nest too deeply, or the result is empty.
-std::vector<std::filesystem::path> expand_batch_inputs(const std::vector<std::string>& arguments);
-
-struct BatchInput {
-  std::filesystem::path path;
-  std::string name;  // its output folder, under the output root
-};
-
-/// Output folder names, unique under the root: the file name without `.gz` and without its extension
-/// (`1crn.cif.gz` -> `1crn`). Inputs whose names clash (compared case-insensitively, also with the
-/// root's own files summary.csv, summary.jsonl and batch.json) all use their whole file name instead
-/// (`1abc.pdb`, `1abc.cif`); if those still clash (the same file name in two folders), the second,
-/// third, ... in input order get `~2`, `~3`, ... appended. Names therefore depend on the set of inputs,
-/// not on their order, except for that last rule.
-std::vector<BatchInput> name_batch_inputs(const std::vector<std::filesystem::path>& paths);
-
-/// The folder of one run: root/name with one weighting, root/name/<weights> (uniform, cotan,
-/// mean-value) with several.
-std::filesystem::path batch_run_folder(const std::filesystem::path& root, const BatchInput& input,
-                                       const std::vector<Weights>& weights, std::size_t weighting);
-
-/// The state of a run folder.
-enum class RunStatus {
-  kPending,       // neither report.json nor error.json: not run yet (or interrupted)
-  kOk,            // report.json, certified
-  kNotCertified,  // report.json, not certified (exit code 3)
-  kError,         // error.json: refused, unreadable or internal error (its exit code: 1, 2 or 4)
-};
-const char* to_string(RunStatus status);  // "pending", "ok", "not-certified", "error"
-
-/// Files a run folder may hold; `error.json` is {"status": "error", "exit_code", "message", "input"}.
-inline constexpr const char* kRunErrorFile = "error.json";
-inline constexpr const char* kRunReportFile = "report.json";
-
-/// The status of a run folder (never throws: an unreadable report.json or error.json counts as kError
-/// with a message saying so; a missing folder is kPending).
-RunStatus run_status(const std::filesystem::path& folder);
-
-/// Writes `error.json` into `folder` (created if missing), atomically. Throws InputError if it cannot.
-void write_run_error(const std::filesystem::path& folder, const std::filesystem::path& input, int exit_code,
-                     const std::string& message);
-
-/// The columns of summary.csv (and the keys of each summary.jsonl line), in order. See the README
-/// ("Batch runs") for their meaning.
-const std::vector<std::string>& summary_columns();
-
-/// One row: an object with exactly summary_columns() as keys (null where not applicable), built from
-/// the run folder only (report.json or error.json; status "pending" and nulls when neither exists).
-nlohmann::ordered_json summary_row(const BatchInput& input, Weights weights, const std::filesystem::path& root,
-                                   const std::filesystem::path& folder);
-
-/// All rows: inputs in order, then weightings in order.
-std::vector<nlohmann::ordered_json> build_summary(const std::filesystem::path& root,
-                                                  const std::vector<BatchInput>& inputs,
-                                                  const std::vector<Weights>& weights);
-
-/// summary.csv text: a header line, then one line per row; RFC 4180 quoting (a field holding a comma,
-/// a double quote, a line break or leading/trailing spaces is quoted, quotes doubled), LF line ends,
-/// UTF-8; numbers as in JSON (shortest text that reads back the same double), null as an empty field.
-std::string summary_csv(const std::vector<nlohmann::ordered_json>& rows);
-/// summary.jsonl text: one JSON object per line (the same keys and values as the CSV).
-std::string summary_jsonl(const std::vector<nlohmann::ordered_json>& rows);
-
-/// Builds the summary from the folders and writes summary.csv and summary.jsonl into `root`, each
-/// atomically. Returns the rows. Throws InputError if a file cannot be written.
-std::vector<nlohmann::ordered_json> write_batch_summary(const std::filesystem::path& root,
-                                                        const std::vector<BatchInput>& inputs,
-                                                        const std::vector<Weights>& weights);
-
-/// The exit code of a batch from its rows: the first of 4 (internal error), 1 (unreadable input),
-/// 2 (refused mesh), 3 (not certified) that some row has, else 0. A pending row counts as 4 (a run
-/// that could not record its result); an interrupted batch is the caller's business (130).
-int batch_exit_code(const std::vector<nlohmann::ordered_json>& rows);
-
-/// Holds an exclusive lock (flock on `root/.batch.lock`, created with `root` if missing) so that two
-/// batches never write into the same root; released on destruction or when the process ends, however.
-/// Throws InputError if the root cannot be created or another process holds the lock.
-class BatchLock {
- public:
-  explicit BatchLock(const std::filesystem::path& root);
-  ~BatchLock();
-  BatchLock(const BatchLock&) = delete;
-  BatchLock& operator=(const BatchLock&) = delete;
-  /// In a process forked while the lock is held: closes this process's copy of the lock's descriptor, so
-  /// that the lock ends with the process that took it, not with the last of its children (a flock
-  /// belongs to the open file, which a fork shares). Does not throw.
-  void forget_in_child() const noexcept;
-
- private:
-  int descriptor_ = -1;
-};
 
 struct BatchOptions {
   MapJobOptions job;  // job.map.weights is ignored: see weights
@@ -137,13 +34,14 @@ struct BatchOptions {
   bool retry_errors = false;   // redo runs with error.json (cleared first)
   /// Map each input in a child process (fork) supervised by its worker thread, instead of in the worker
   /// thread itself. Concurrent maps in one process are NOT reproducible with Debian 12's CHOLMOD and
-  /// serial OpenBLAS (measured: 22 of 470 runs mapped differently, 3 of them not certified), while
-  /// separate processes are; a crash or an out-of-memory kill then also costs one input, not the batch.
+  /// serial OpenBLAS, while separate processes are; a crash or an out-of-memory kill then also costs one
+  /// input, not the batch.
   bool isolate = true;
 };
 
 /// The options that decide the outputs, as stored in root/batch.json (weights, solver, repair, collapse
-/// floor, welding, component, ASCII, structure selection, radii, probe, grid, keep_topology).
+/// floor, welding, component, ASCII, structure selection, radii, probe, grid, keep_topology,
+/// simplification). Does not throw (but std::bad_alloc).
 nlohmann::ordered_json batch_options_json(const BatchOptions& options);
 
 /// What happened to one input in this session.

@@ -10,19 +10,30 @@
 
 namespace spheremap {
 
+/// Which connected component of a mesh with several to keep.
+struct ComponentChoice {
+  enum class Mode {
+    kRefuse,    // refuse a mesh with several components (the default)
+    kLargest,   // the largest (most triangles; ties to the first)
+    kNumbered,  // component `number`, in the order of their first triangle in the file
+  };
+  Mode mode = Mode::kRefuse;
+  std::int32_t number = 0;  // with kNumbered, >= 0
+
+  static constexpr ComponentChoice refuse() { return {}; }
+  static constexpr ComponentChoice largest() { return {Mode::kLargest, 0}; }
+  static constexpr ComponentChoice numbered(std::int32_t k) { return {Mode::kNumbered, k}; }
+  friend constexpr bool operator==(const ComponentChoice&, const ComponentChoice&) = default;
+};
+
 struct PrepareOptions {
   /// Vertices closer than this (Euclidean) are welded; 0 welds exactly coincident ones only.
   double weld_tolerance = 0;
-  /// Which connected component to keep when there are several: -1 = refuse (default),
-  /// -2 = the largest (most triangles; ties to the first), k >= 0 = component k in the order of
-  /// their first triangle in the file.
-  int component = -1;
+  /// Which connected component to keep when there are several.
+  ComponentChoice component;
   /// Name used in messages (usually the input file name).
   std::string source_name = "mesh";
 };
-
-inline constexpr int kComponentRefuse = -1;
-inline constexpr int kComponentLargest = -2;
 
 struct PrepareReport {
   std::int64_t input_vertices = 0;

@@ -1,19 +1,15 @@
 // Table 1 and Figure 4 from report.json files: hand-made reports with numbers checked by hand.
-#include "spheremap/metrics/table.hpp"
+#include "spheremap/reproduction/table1.hpp"
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 
+#include "../test_support.hpp"
 #include "spheremap/error.hpp"
+#include "spheremap/reproduction/figure4.hpp"
 #include "spheremap/io/ply.hpp"
-#include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/pipeline/report.hpp"
 #include "spheremap/shapes.hpp"
 
 namespace spheremap {
@@ -32,39 +28,31 @@ struct Fake {
   std::array<double, 8> octants;
 };
 
-// The fields of make_report's schema that the table reads (plus a few it does not).
+// A complete report (make_report's schema, of an empty result) with the figures the table reads set.
 nlohmann::json fake_report(const Fake& f) {
   double square = 0;
   for (const double a : f.octants) square += (a - 12.5) * (a - 12.5);
-  return {{"spheremap_version", "0.1.0"},
-          {"input", f.input},
-          {"options", {{"weights", f.weights}, {"solver", "direct"}, {"repair", true}}},
-          {"mesh", {{"vertices", f.triangles / 2 + 2}, {"triangles", f.triangles}}},
-          {"certificate", {{"certified", f.certified}, {"folded", f.folded}, {"collapsed", f.collapsed}}},
-          {"plain_algorithm_certificate",
-           {{"certified", f.plain_certified}, {"folded", f.plain_folded}, {"collapsed", f.plain_collapsed}}},
-          {"distortion",
-           {{"area_distortion_mean_percent", f.area_mean},
-            {"area_distortion_max_percent", f.area_max},
-            {"angle_distortion_mean_degrees", f.angle_mean},
-            {"angle_distortion_rms_degrees", f.angle_rms},
-            {"angle_distortion_max_degrees", f.angle_max},
-            {"octant_area_percent", std::vector<double>(f.octants.begin(), f.octants.end())},
-            {"octant_rms_deviation_percent", std::sqrt(square / 8)}}}};
+  nlohmann::json report = make_report(MapJobResult{}, MapJobOptions{});
+  report["input"] = f.input;
+  report["options"]["weights"] = f.weights;
+  report["mesh"]["vertices"] = f.triangles / 2 + 2;
+  report["mesh"]["triangles"] = f.triangles;
+  report["certificate"].update({{"certified", f.certified}, {"folded", f.folded}, {"collapsed", f.collapsed}});
+  report["plain_algorithm_certificate"].update(
+      {{"certified", f.plain_certified}, {"folded", f.plain_folded}, {"collapsed", f.plain_collapsed}});
+  report["distortion"].update({{"area_distortion_mean_percent", f.area_mean},
+                               {"area_distortion_max_percent", f.area_max},
+                               {"angle_distortion_mean_degrees", f.angle_mean},
+                               {"angle_distortion_rms_degrees", f.angle_rms},
+                               {"angle_distortion_max_degrees", f.angle_max},
+                               {"octant_area_percent", std::vector<double>(f.octants.begin(), f.octants.end())},
+                               {"octant_rms_deviation_percent", std::sqrt(square / 8)}});
+  return report;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing_support::run_cli;
+using testing_support::slurp;
+using testing_support::write_text;
 
 // Three surfaces under uniform weights, one under cotan, a folder without report and a temporary file.
 //   a: 100 triangles, plain 2 folded, final certified; area 100 (400); angle mean 20, RMS 25, max 90;
@@ -72,12 +60,11 @@ std::string slurp(const fs::path& path) {
 //   b: 300 triangles, everything clean; area 50 (200); angle 10, 15, 60; octants 12.5 x 8
 //   c: 200 triangles, plain 1 folded 3 collapsed, final 1 folded 3 collapsed (not certified); area 30
 //      (900); angle 30, 35, 120; octants 20, 5, 12.5 x 6
-class Table : public testing::Test {
+class Table : public testing_support::FolderTest {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / ("spheremap-table-" + std::to_string(::getpid()) + "-" +
-                                         testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
+    FolderTest::SetUp();
+    root_ = folder_;
     runs_ = root_ / "runs";
     const std::array<double, 8> clean{12.5, 12.5, 12.5, 12.5, 12.5, 12.5, 12.5, 12.5};
     write_report("c/uniform", {"/data/c.pdb", "uniform", 200, false, 1, 3, false, 1, 3, 30, 900, 30, 35, 120,
@@ -96,15 +83,14 @@ class Table : public testing::Test {
     surface.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {0, 4, 2}};
     write_ply(runs_ / "c" / "uniform" / "surface.ply", surface);
   }
-  void TearDown() override { fs::remove_all(root_); }
 
   void write_report(const std::string& folder, const Fake& fake) {
     write_text(runs_ / folder / "report.json", fake_report(fake).dump(2));
   }
 
-  std::vector<RunRecord> records() {
-    std::vector<RunRecord> out;
-    for (const auto& path : find_reports(runs_)) out.push_back(read_run_record(path));
+  std::vector<ReportSummary> records() {
+    std::vector<ReportSummary> out;
+    for (const auto& path : find_reports(runs_)) out.push_back(read_report_file(path));
     return out;
   }
 
@@ -127,20 +113,21 @@ TEST_F(Table, MissingFolderOrFileIsRefusedEmptyFolderHasNone) {
 }
 
 TEST_F(Table, ReadsTheFieldsOfAReport) {
-  const RunRecord c = read_run_record(runs_ / "c" / "uniform" / "report.json");
+  const ReportSummary c = read_report_file(runs_ / "c" / "uniform" / "report.json");
+  EXPECT_EQ(c.source, runs_ / "c" / "uniform" / "report.json");
   EXPECT_EQ(c.input, "/data/c.pdb");
   EXPECT_EQ(c.weights, "uniform");
   EXPECT_TRUE(c.repair);
   EXPECT_EQ(c.triangles, 200);
-  EXPECT_FALSE(c.certified);
-  EXPECT_EQ(c.folded, 1);
-  EXPECT_EQ(c.collapsed, 3);
-  EXPECT_EQ(c.plain_folded, 1);
-  EXPECT_EQ(c.plain_collapsed, 3);
-  EXPECT_DOUBLE_EQ(c.area_distortion_max_percent, 900);
-  EXPECT_DOUBLE_EQ(c.angle_distortion_rms_degrees, 35);
-  EXPECT_DOUBLE_EQ(c.octant_area_percent[1], 5);
-  EXPECT_DOUBLE_EQ(c.octant_rms_deviation_percent, 3.75);
+  EXPECT_FALSE(c.certificate.certified);
+  EXPECT_EQ(c.certificate.folded, 1);
+  EXPECT_EQ(c.certificate.collapsed, 3);
+  EXPECT_EQ(c.plain_certificate.folded, 1);
+  EXPECT_EQ(c.plain_certificate.collapsed, 3);
+  EXPECT_DOUBLE_EQ(c.distortion.area_distortion_max_percent, 900);
+  EXPECT_DOUBLE_EQ(c.distortion.angle_distortion_rms_degrees, 35);
+  EXPECT_DOUBLE_EQ(c.distortion.octant_area_percent[1], 5);
+  EXPECT_DOUBLE_EQ(c.distortion.octant_rms_deviation_percent, 3.75);
 }
 
 TEST_F(Table, BrokenReportsNameTheFileAndTheField) {
@@ -148,7 +135,7 @@ TEST_F(Table, BrokenReportsNameTheFileAndTheField) {
   report["distortion"].erase("angle_distortion_rms_degrees");
   write_text(runs_ / "x" / "report.json", report.dump());
   try {
-    read_run_record(runs_ / "x" / "report.json");
+    read_report_file(runs_ / "x" / "report.json");
     FAIL() << "no throw";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("distortion.angle_distortion_rms_degrees"), std::string::npos) << e.what();
@@ -157,21 +144,9 @@ TEST_F(Table, BrokenReportsNameTheFileAndTheField) {
   report = fake_report({"x.pdb", "uniform", 10, true, 0, 0, true, 0, 0, 1, 2, 3, 4, 5, {}});
   report["mesh"]["triangles"] = "many";
   write_text(runs_ / "x" / "report.json", report.dump());
-  EXPECT_THROW(read_run_record(runs_ / "x" / "report.json"), InputError);
+  EXPECT_THROW(read_report_file(runs_ / "x" / "report.json"), InputError);
   write_text(runs_ / "x" / "report.json", "{\"input\": ");
-  EXPECT_THROW(read_run_record(runs_ / "x" / "report.json"), InputError);
-}
-
-TEST_F(Table, ReadsARealReport) {
-  // The schema of make_report, not a copy of it: a real map of an icosphere.
-  const MapJobResult result = run_map_job(make_icosphere(2), "ico2", MapJobOptions{});
-  const RunRecord r = run_record_from_json(make_report(result, MapJobOptions{}), "ico2/report.json");
-  EXPECT_EQ(r.input, "ico2");
-  EXPECT_EQ(r.weights, "uniform");
-  EXPECT_EQ(r.triangles, static_cast<std::int64_t>(result.prepared.mesh.triangle_count()));
-  EXPECT_EQ(r.certified, result.map.certificate.certified());
-  EXPECT_DOUBLE_EQ(r.angle_distortion_rms_degrees, result.metrics.angle_distortion_rms_degrees);
-  EXPECT_DOUBLE_EQ(r.octant_area_percent[7], result.metrics.octant_area_percent[7]);
+  EXPECT_THROW(read_report_file(runs_ / "x" / "report.json"), InputError);
 }
 
 TEST_F(Table, AggregatesTable1ByHand) {
@@ -233,7 +208,7 @@ TEST_F(Table, MarkdownHasThePaperRowsAndOurs) {
 }
 
 TEST_F(Table, OctantHistogramUsesThePapersBins) {
-  std::vector<RunRecord> uniform;
+  std::vector<ReportSummary> uniform;
   for (const auto& r : records())
     if (r.weights == "uniform") uniform.push_back(r);
   const Histogram h = octant_histogram(uniform);
@@ -248,8 +223,8 @@ TEST_F(Table, OctantHistogramUsesThePapersBins) {
   const std::vector<std::int64_t> expected{1, 1, 20, 1, 0, 1, 0, 0, 0, 0};  // 5 | 10 | 12.5 x 20 | 15 | 20
   EXPECT_EQ(h.counts, expected);
   // Values beyond the paper's range widen it.
-  uniform[0].octant_area_percent[0] = 0.2;
-  uniform[0].octant_area_percent[1] = 40;
+  uniform[0].distortion.octant_area_percent[0] = 0.2;
+  uniform[0].distortion.octant_area_percent[1] = 40;
   const Histogram wide = octant_histogram(uniform);
   EXPECT_EQ(wide.labels.front(), "0.5");
   EXPECT_EQ(wide.labels.back(), "39.5");
@@ -261,7 +236,7 @@ TEST_F(Table, TriangleAreaHistogramAndTheTypicalSurface) {
   const auto recs = records();
   const std::size_t typical = typical_surface(recs);
   EXPECT_EQ(recs[typical].input, "/data/c.pdb");
-  const auto areas = triangle_areas_of_file(recs[typical].report.parent_path() / "surface.ply");
+  const auto areas = triangle_areas_of_file(recs[typical].source.parent_path() / "surface.ply");
   ASSERT_EQ(areas.size(), 4u);
   EXPECT_DOUBLE_EQ(areas[0], 1);
   EXPECT_DOUBLE_EQ(areas[1], 1);
@@ -305,23 +280,8 @@ TEST_F(Table, ThousandsLikeThePaper) {
 }
 
 // The command as a user runs it.
-struct CliRun {
-  int exit_code;
-  std::string output;
-};
-
-CliRun run_cli(const std::string& arguments) {
-  const std::string command = std::string(SPHEREMAP_CLI_PATH) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  while (std::size_t got = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, got);
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
-
 TEST_F(Table, CommandWritesTheTableAndFiguresDeterministically) {
-  const CliRun run = run_cli("table " + runs_.string());
+  const testing_support::CliRun run = run_cli("table " + runs_.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("4 report.json found (uniform: 3, cotan: 1)"), std::string::npos) << run.output;
   for (const char* name : {"table1.md", "figure4a-uniform.png", "figure4a-uniform.svg", "figure4a-cotan.png",
@@ -329,7 +289,7 @@ TEST_F(Table, CommandWritesTheTableAndFiguresDeterministically) {
     EXPECT_TRUE(fs::exists(runs_ / name)) << name;
   EXPECT_NE(slurp(runs_ / "table1.md").find("/data/c.pdb"), std::string::npos);
   // -o elsewhere: the same bytes.
-  const CliRun again = run_cli("table -q " + runs_.string() + " -o " + (root_ / "out").string());
+  const testing_support::CliRun again = run_cli("table -q " + runs_.string() + " -o " + (root_ / "out").string());
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_TRUE(again.output.empty()) << again.output;
   for (const char* name : {"table1.md", "figure4a-uniform.png", "figure4a-uniform.svg", "figure4b.png", "figure4b.svg"})
@@ -337,10 +297,10 @@ TEST_F(Table, CommandWritesTheTableAndFiguresDeterministically) {
 }
 
 TEST_F(Table, CommandRefusesMissingAndEmptyFolders) {
-  const CliRun missing = run_cli("table " + (root_ / "nowhere").string());
+  const testing_support::CliRun missing = run_cli("table " + (root_ / "nowhere").string());
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
-  const CliRun empty = run_cli("table " + (runs_ / "failed").string());
+  const testing_support::CliRun empty = run_cli("table " + (runs_ / "failed").string());
   EXPECT_EQ(empty.exit_code, 1);
   EXPECT_NE(empty.output.find("no report.json found"), std::string::npos) << empty.output;
   EXPECT_FALSE(fs::exists(runs_ / "failed" / "table1.md"));

@@ -1,46 +1,20 @@
-// Table 1 and Figure 4 of Rahi & Sharp from report.json files: collection, aggregation, markdown.
-#include "spheremap/metrics/table.hpp"
+// Table 1 of Rahi & Sharp from report.json files: collection, aggregation, markdown.
+#include "spheremap/reproduction/table1.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 #include <system_error>
 
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
-#include "spheremap/geometry/vec.hpp"
-#include "spheremap/io/mesh_io.hpp"
 
 namespace spheremap {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The value at a path of keys, with a message naming the path when it is missing or of the wrong type.
-template <typename T>
-T field(const nlohmann::json& report, std::initializer_list<const char*> keys, const fs::path& source) {
-  const nlohmann::json* node = &report;
-  std::string path;
-  for (const char* key : keys) {
-    path += path.empty() ? key : std::string(".") + key;
-    if (!node->is_object() || !node->contains(key))
-      throw InputError(fmt::format("{}: field '{}' is missing; this is not a report.json of spheremap map (or of an "
-                                   "older version): map the input again",
-                                   source.string(), path));
-    node = &(*node)[key];
-  }
-  try {
-    return node->get<T>();
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(fmt::format("{}: field '{}' has the wrong type ({}); map the input again", source.string(), path,
-                                 node->type_name()));
-  }
-}
 
 int protocol_rank(const std::string& weights) {
   if (weights == "uniform") return 0;
@@ -80,50 +54,7 @@ std::string with_thousands(std::int64_t n) {
   return n < 0 ? "-" + out : out;
 }
 
-RunRecord run_record_from_json(const nlohmann::json& report, const fs::path& source) {
-  RunRecord r;
-  r.report = source;
-  r.input = field<std::string>(report, {"input"}, source);
-  r.weights = field<std::string>(report, {"options", "weights"}, source);
-  r.repair = field<bool>(report, {"options", "repair"}, source);
-  r.triangles = field<std::int64_t>(report, {"mesh", "triangles"}, source);
-  r.certified = field<bool>(report, {"certificate", "certified"}, source);
-  r.folded = field<std::int64_t>(report, {"certificate", "folded"}, source);
-  r.collapsed = field<std::int64_t>(report, {"certificate", "collapsed"}, source);
-  r.plain_certified = field<bool>(report, {"plain_algorithm_certificate", "certified"}, source);
-  r.plain_folded = field<std::int64_t>(report, {"plain_algorithm_certificate", "folded"}, source);
-  r.plain_collapsed = field<std::int64_t>(report, {"plain_algorithm_certificate", "collapsed"}, source);
-  r.area_distortion_mean_percent = field<double>(report, {"distortion", "area_distortion_mean_percent"}, source);
-  r.area_distortion_max_percent = field<double>(report, {"distortion", "area_distortion_max_percent"}, source);
-  r.angle_distortion_mean_degrees = field<double>(report, {"distortion", "angle_distortion_mean_degrees"}, source);
-  r.angle_distortion_rms_degrees = field<double>(report, {"distortion", "angle_distortion_rms_degrees"}, source);
-  r.angle_distortion_max_degrees = field<double>(report, {"distortion", "angle_distortion_max_degrees"}, source);
-  const auto octants = field<std::vector<double>>(report, {"distortion", "octant_area_percent"}, source);
-  if (octants.size() != 8)
-    throw InputError(fmt::format("{}: field 'distortion.octant_area_percent' has {} values instead of 8; map the input again",
-                                 source.string(), octants.size()));
-  std::copy(octants.begin(), octants.end(), r.octant_area_percent.begin());
-  r.octant_rms_deviation_percent = field<double>(report, {"distortion", "octant_rms_deviation_percent"}, source);
-  if (r.triangles <= 0)
-    throw InputError(fmt::format("{}: mesh.triangles is {}; map the input again", source.string(), r.triangles));
-  return r;
-}
-
-RunRecord read_run_record(const fs::path& report_json) {
-  std::ifstream in(report_json, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open the file; check that it exists and is readable", report_json.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json report;
-  try {
-    report = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not valid JSON ({}); map the input again", report_json.string(), e.what()));
-  }
-  return run_record_from_json(report, report_json);
-}
-
-std::vector<fs::path> find_reports(const fs::path& runs_dir) { return find_files_named(runs_dir, "report.json"); }
+std::vector<fs::path> find_reports(const fs::path& runs_dir) { return find_files_named(runs_dir, kReportFile); }
 
 std::vector<fs::path> find_files_named(const fs::path& runs_dir, const std::string& name) {
   std::error_code error;
@@ -146,9 +77,9 @@ std::vector<fs::path> find_files_named(const fs::path& runs_dir, const std::stri
   return found;
 }
 
-std::vector<ProtocolSummary> summarize_protocols(const std::vector<RunRecord>& records) {
-  std::map<std::string, std::vector<const RunRecord*>> by_protocol;
-  for (const auto& r : records) by_protocol[sorted_key(r.weights)].push_back(&r);
+std::vector<ProtocolSummary> summarize_protocols(const std::vector<ReportSummary>& reports) {
+  std::map<std::string, std::vector<const ReportSummary*>> by_protocol;
+  for (const auto& r : reports) by_protocol[sorted_key(r.weights)].push_back(&r);
   std::vector<ProtocolSummary> out;
   for (const auto& [key, runs] : by_protocol) {
     ProtocolSummary s;
@@ -158,29 +89,29 @@ std::vector<ProtocolSummary> summarize_protocols(const std::vector<RunRecord>& r
     s.octant_min_percent = std::numeric_limits<double>::infinity();
     s.octant_max_percent = -std::numeric_limits<double>::infinity();
     double octant_square_sum = 0;
-    for (const RunRecord* r : runs) {
+    for (const ReportSummary* r : runs) {
       s.triangles_total += r->triangles;
       s.triangles_min = std::min(s.triangles_min, r->triangles);
       s.triangles_max = std::max(s.triangles_max, r->triangles);
-      s.folded_total += r->folded;
-      s.collapsed_total += r->collapsed;
-      s.surfaces_without_folds += r->folded == 0;
-      s.surfaces_without_collapse += r->collapsed == 0;
-      s.surfaces_certified += r->certified;
-      s.plain_folded_total += r->plain_folded;
-      s.plain_collapsed_total += r->plain_collapsed;
-      s.plain_surfaces_without_folds += r->plain_folded == 0;
-      s.plain_surfaces_certified += r->plain_certified;
-      s.area_mean_of_means_percent += r->area_distortion_mean_percent;
-      s.area_max_of_means_percent = std::max(s.area_max_of_means_percent, r->area_distortion_mean_percent);
-      s.area_mean_of_maxima_percent += r->area_distortion_max_percent;
-      s.area_max_percent = std::max(s.area_max_percent, r->area_distortion_max_percent);
-      s.angle_mean_of_rms_degrees += r->angle_distortion_rms_degrees;
-      s.angle_max_of_rms_degrees = std::max(s.angle_max_of_rms_degrees, r->angle_distortion_rms_degrees);
-      s.angle_mean_of_means_degrees += r->angle_distortion_mean_degrees;
-      s.angle_max_degrees = std::max(s.angle_max_degrees, r->angle_distortion_max_degrees);
-      s.octant_rms_mean_percent += r->octant_rms_deviation_percent;
-      for (const double a : r->octant_area_percent) {
+      s.folded_total += r->certificate.folded;
+      s.collapsed_total += r->certificate.collapsed;
+      s.surfaces_without_folds += r->certificate.folded == 0;
+      s.surfaces_without_collapse += r->certificate.collapsed == 0;
+      s.surfaces_certified += r->certificate.certified;
+      s.plain_folded_total += r->plain_certificate.folded;
+      s.plain_collapsed_total += r->plain_certificate.collapsed;
+      s.plain_surfaces_without_folds += r->plain_certificate.folded == 0;
+      s.plain_surfaces_certified += r->plain_certificate.certified;
+      s.area_mean_of_means_percent += r->distortion.area_distortion_mean_percent;
+      s.area_max_of_means_percent = std::max(s.area_max_of_means_percent, r->distortion.area_distortion_mean_percent);
+      s.area_mean_of_maxima_percent += r->distortion.area_distortion_max_percent;
+      s.area_max_percent = std::max(s.area_max_percent, r->distortion.area_distortion_max_percent);
+      s.angle_mean_of_rms_degrees += r->distortion.angle_distortion_rms_degrees;
+      s.angle_max_of_rms_degrees = std::max(s.angle_max_of_rms_degrees, r->distortion.angle_distortion_rms_degrees);
+      s.angle_mean_of_means_degrees += r->distortion.angle_distortion_mean_degrees;
+      s.angle_max_degrees = std::max(s.angle_max_degrees, r->distortion.angle_distortion_max_degrees);
+      s.octant_rms_mean_percent += r->distortion.octant_rms_deviation_percent;
+      for (const double a : r->distortion.octant_area_percent) {
         octant_square_sum += (a - 12.5) * (a - 12.5);
         s.octant_min_percent = std::min(s.octant_min_percent, a);
         s.octant_max_percent = std::max(s.octant_max_percent, a);
@@ -206,116 +137,9 @@ const std::vector<PaperRow>& paper_table1() {
   return rows;
 }
 
-Histogram octant_histogram(const std::vector<RunRecord>& records) {
-  // Bin k is [3k - 1, 3k + 2), centred on 3k + 0.5: ..., [5, 8) centred on 6.5, [11, 14) on 12.5, ...
-  auto bin_of = [](double a) { return static_cast<int>(std::floor((a + 1) / 3)); };
-  int first = bin_of(6.5), last = bin_of(33.5);
-  for (const auto& r : records)
-    for (const double a : r.octant_area_percent) {
-      first = std::min(first, std::max(0, bin_of(a)));
-      last = std::max(last, bin_of(a));
-    }
-  Histogram h;
-  for (int k = first; k <= last + 1; ++k) h.edges.push_back(3.0 * k - 1);
-  h.counts.assign(static_cast<std::size_t>(last - first + 1), 0);
-  for (int k = first; k <= last; ++k) h.labels.push_back(fmt::format("{:.1f}", 3.0 * k + 0.5));
-  for (const auto& r : records)
-    for (const double a : r.octant_area_percent) ++h.counts[static_cast<std::size_t>(std::max(0, bin_of(a)) - first)];
-  return h;
-}
-
-Histogram triangle_area_histogram(const std::vector<double>& triangle_areas) {
-  double total = 0;
-  for (const double a : triangle_areas) total += a;
-  if (triangle_areas.empty() || !(total > 0) || !std::isfinite(total))
-    throw std::invalid_argument("triangle_area_histogram: no triangles, or no positive finite total area");
-  const double mean = total / static_cast<double>(triangle_areas.size());
-  constexpr double kWidth = 10, kOverflow = 300;
-  double largest = 0;
-  std::vector<double> percent;
-  percent.reserve(triangle_areas.size());
-  for (const double a : triangle_areas) {
-    percent.push_back(100 * a / mean);
-    largest = std::max(largest, percent.back());
-  }
-  const bool overflow = largest >= kOverflow;
-  const double top = overflow ? kOverflow : std::max(230.0, kWidth * (std::floor(largest / kWidth) + 1));
-  const auto regular = static_cast<int>(std::lround(top / kWidth));
-  Histogram h;
-  for (int k = 0; k <= regular; ++k) h.edges.push_back(kWidth * k);
-  for (int k = 1; k <= regular; ++k) h.labels.push_back(fmt::format("{:.0f}", kWidth * k));
-  if (overflow) {
-    h.edges.push_back(std::numeric_limits<double>::infinity());
-    h.labels.push_back(fmt::format("≥{:.0f}", kOverflow));
-  }
-  h.counts.assign(h.labels.size(), 0);
-  for (const double p : percent) {
-    const auto bin = std::min(static_cast<std::size_t>(std::max(0.0, std::floor(p / kWidth))), h.counts.size() - 1);
-    ++h.counts[bin];
-  }
-  return h;
-}
-
-std::vector<double> triangle_areas_of_file(const fs::path& mesh_file) {
-  const PolygonSoup soup = read_polygon_soup(mesh_file);
-  std::vector<double> areas;
-  areas.reserve(soup.faces.size());
-  for (const auto& f : soup.faces) {
-    if (f.size() != 3)
-      throw InputError(fmt::format("{}: a face has {} corners; expected the triangles of a spheremap output",
-                                   mesh_file.string(), f.size()));
-    areas.push_back(triangle_area(soup.positions[static_cast<std::size_t>(f[0])],
-                                  soup.positions[static_cast<std::size_t>(f[1])],
-                                  soup.positions[static_cast<std::size_t>(f[2])]));
-  }
-  return areas;
-}
-
-std::size_t typical_surface(const std::vector<RunRecord>& records) {
-  if (records.empty()) throw std::invalid_argument("typical_surface: no records");
-  std::map<std::string, std::size_t> first_of_input;
-  for (std::size_t i = 0; i < records.size(); ++i) first_of_input.emplace(records[i].input, i);
-  std::vector<std::size_t> surfaces;
-  for (const auto& [input, index] : first_of_input) surfaces.push_back(index);
-  std::sort(surfaces.begin(), surfaces.end(), [&](std::size_t a, std::size_t b) {
-    if (records[a].triangles != records[b].triangles) return records[a].triangles < records[b].triangles;
-    return records[a].input < records[b].input;
-  });
-  return surfaces[(surfaces.size() - 1) / 2];
-}
-
-namespace {
-
-BarChart histogram_chart(const Histogram& histogram) {
-  BarChart chart;
-  chart.y_label = "Frequency";
-  chart.categories = histogram.labels;
-  for (const auto c : histogram.counts) chart.values.push_back(static_cast<double>(c));
-  return chart;
-}
-
-}  // namespace
-
-BarChart figure4a_chart(const Histogram& histogram, const std::string& weights, std::int64_t surfaces) {
-  BarChart chart = histogram_chart(histogram);
-  chart.title = fmt::format("Figure 4a: octant areas, {} weights", weights);
-  chart.subtitle = fmt::format("{} surfaces × 8 octants; bins 3% wide, labelled by their centre", with_thousands(surfaces));
-  chart.x_label = "% area of octant";
-  return chart;
-}
-
-BarChart figure4b_chart(const Histogram& histogram, const std::string& name, std::int64_t triangles,
-                        std::size_t distinct_surfaces) {
-  BarChart chart = histogram_chart(histogram);
-  chart.title = fmt::format("Figure 4b: triangle areas of {} ({} triangles)", name, with_thousands(triangles));
-  chart.subtitle = fmt::format("median triangle count of {} surfaces; bar 10 = [0, 10)% of the mean", distinct_surfaces);
-  chart.x_label = "Area as % of mean";
-  return chart;
-}
-
-std::vector<std::string> duplicate_runs(const std::vector<RunRecord>& records) {
+std::vector<std::string> duplicate_runs(const std::vector<ReportSummary>& reports) {
   std::map<std::pair<std::string, std::string>, std::vector<std::string>> seen;
-  for (const auto& r : records) seen[{sorted_key(r.weights), r.input}].push_back(r.report.string());
+  for (const auto& r : reports) seen[{sorted_key(r.weights), r.input}].push_back(r.source.string());
   std::vector<std::string> out;
   for (const auto& [key, reports] : seen)
     if (reports.size() > 1)
@@ -325,7 +149,7 @@ std::vector<std::string> duplicate_runs(const std::vector<RunRecord>& records) {
   return out;
 }
 
-std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const std::vector<RunRecord>& records,
+std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const std::vector<ReportSummary>& reports,
                             const Table1Context& context) {
   std::string md;
   md += "# Table 1 and Figure 4 (Rahi & Sharp), reproduced by spheremap\n\n";
@@ -421,19 +245,19 @@ std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const
   md += "| Report | Input | Weights | Repair | Triangles | Plain folded | Plain collapsed | Folded | Collapsed | "
         "Certified | Area mean (max) | Angle RMS (max) | Octant RMS |\n";
   md += "|---|---|---|---|--:|--:|--:|--:|--:|---|--:|--:|--:|\n";
-  std::vector<const RunRecord*> sorted;
-  for (const auto& r : records) sorted.push_back(&r);
-  std::stable_sort(sorted.begin(), sorted.end(), [](const RunRecord* a, const RunRecord* b) {
+  std::vector<const ReportSummary*> sorted;
+  for (const auto& r : reports) sorted.push_back(&r);
+  std::stable_sort(sorted.begin(), sorted.end(), [](const ReportSummary* a, const ReportSummary* b) {
     return sorted_key(a->weights) < sorted_key(b->weights);
   });
-  for (const RunRecord* r : sorted) {
-    const fs::path relative = r->report.lexically_relative(context.runs_dir);
+  for (const ReportSummary* r : sorted) {
+    const fs::path relative = r->source.lexically_relative(context.runs_dir);
     md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) | {:.1f}% |\n",
-                      (relative.empty() ? r->report : relative).string(), fs::path(r->input).filename().string(),
-                      r->weights, r->repair ? "yes" : "no", with_thousands(r->triangles), r->plain_folded,
-                      r->plain_collapsed, r->folded, r->collapsed, r->certified ? "yes" : "**no**",
-                      r->area_distortion_mean_percent, r->area_distortion_max_percent, r->angle_distortion_rms_degrees,
-                      r->angle_distortion_max_degrees, r->octant_rms_deviation_percent);
+                      (relative.empty() ? r->source : relative).string(), fs::path(r->input).filename().string(),
+                      r->weights, r->repair ? "yes" : "no", with_thousands(r->triangles), r->plain_certificate.folded,
+                      r->plain_certificate.collapsed, r->certificate.folded, r->certificate.collapsed, r->certificate.certified ? "yes" : "**no**",
+                      r->distortion.area_distortion_mean_percent, r->distortion.area_distortion_max_percent, r->distortion.angle_distortion_rms_degrees,
+                      r->distortion.angle_distortion_max_degrees, r->distortion.octant_rms_deviation_percent);
   }
   return md;
 }

@@ -22,6 +22,7 @@
 
 #include <fmt/format.h>
 
+#include "../test_support.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/shapes.hpp"
@@ -34,17 +35,8 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << text;
-}
+using testing_support::slurp;
+using testing_support::write_text;
 
 // A minimal RFC 4180 reader (quoted fields with doubled quotes, commas and line breaks inside).
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -112,15 +104,12 @@ constexpr const char* kTinyPqr =
     "ATOM      3  C   GLY A   1       2.000   1.400   0.000  0.0000 1.7000\n"
     "ATOM      4  O   GLY A   1       1.300   2.400   0.300  0.0000 1.5200\n";
 
-class Batch : public testing::Test {
+class Batch : public testing_support::FolderTest {
  protected:
   void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("spheremap-batch-" + std::to_string(::getpid()) + "-" +
-                                           testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(folder_);
+    FolderTest::SetUp();
     fs::create_directories(folder_ / "in");
   }
-  void TearDown() override { fs::remove_all(folder_); }
 
   // A small mixed set: two good meshes, a structure, an open mesh (refused, 2), garbage (unreadable, 1).
   std::vector<fs::path> mixed_set() {
@@ -141,8 +130,6 @@ class Batch : public testing::Test {
     options.job.surface.grid = 0.6;
     return options;
   }
-
-  fs::path folder_;
 };
 
 TEST_F(Batch, ExpandsFoldersGlobsAndListsInADeterministicOrder) {
@@ -606,14 +593,15 @@ TEST_F(BatchCli, ExitCodesAndOneLinePerInputWithoutATerminal) {
 
 // --- Real structures -------------------------------------------------------------------------------
 
-TEST(DataBatch, PaperStructuresAtThePaperPresetInParallel) {
+class DataBatch : public testing_support::FolderTest {};
+
+TEST_F(DataBatch, PaperStructuresAtThePaperPresetInParallel) {
   const fs::path data = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb" / "paper77";
   std::vector<fs::path> files;
   for (const char* name : {"1etl.pdb", "1etm.pdb", "2dcg.cif"})
     if (fs::exists(data / name)) files.push_back(data / name);
   if (files.size() < 3) GTEST_SKIP() << "needs " << data << "/{1etl.pdb,1etm.pdb,2dcg.cif} (../shared/data)";
-  const fs::path root = fs::temp_directory_path() / ("spheremap-databatch-" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const fs::path root = folder_;
   BatchOptions options;
   options.job.surface.probe = 1.8;  // --preset paper
   options.job.surface.grid = 2.5;
@@ -637,7 +625,6 @@ TEST(DataBatch, PaperStructuresAtThePaperPresetInParallel) {
     for (const char* weights : {"uniform", "mean-value"})
       EXPECT_EQ(slurp(root / "parallel" / input.name / weights / "sphere.ply"),
                 slurp(root / "serial" / input.name / weights / "sphere.ply"));
-  fs::remove_all(root);
 }
 
 }  // namespace

@@ -1,0 +1,174 @@
+// The options shared by map, batch and surface, each registered once.
+#include "options.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "spheremap/error.hpp"
+#include "spheremap/molecule/structure.hpp"
+
+namespace spheremap::cli {
+namespace {
+
+void add_mesh_edge_option(CLI::App* cmd, double& mesh_edge, PresetScope scope) {
+  const char* text =
+      scope == PresetScope::kMap
+          ? "Simplify the surface before mapping to well-shaped triangles with edges of about this length, keeping a "
+            "subset of its vertices (structures: default 1 Å; 0 maps the contour as it is; mesh files: only when "
+            "given, in the mesh's units)"
+          : "Write the surface simplified to well-shaped triangles with edges of about this length in Å, a subset "
+            "of the contour's vertices (default: the contour as it is; spheremap map uses 1 Å)";
+  cmd->add_option("--mesh-edge", mesh_edge, text)->check(CLI::NonNegativeNumber);
+}
+
+std::string preset_help(PresetScope scope) {
+  return fmt::format(
+      "'paper': the paper's settings for reproduction (probe {} Å, Bondi radii, grid {} Å, the binary grid contoured "
+      "at 1/2: vertices at edge midpoints). 'fast': a quick look (grid {} Å{}; areas about 1-1.5% below MSMS's). "
+      "Options given explicitly still win",
+      kPaperProbe, kPaperGrid, kFastGrid,
+      scope == PresetScope::kMap
+          ? fmt::format(", mesh edges {} Å, at most {} equalizing rounds", kFastMeshEdge, kFastEqualizingRounds)
+          : "");
+}
+
+void add_equalizing_rounds_option(CLI::App* command, MapOptions& options) {
+  command->add_option("--equalizing-rounds", options.max_equalizing_rounds,
+                      "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets "
+                      "more evenly, each kept only if the map stays certified and its area distortion drops (default "
+                      "12; 0: faster, the first certified map)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+}  // namespace
+
+void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, PresetScope scope) {
+  command = cmd;
+  scope_ = scope;
+  if (scope == PresetScope::kSurface) options.simplify.target_edge_length = 0;
+  add_mesh_edge_option(cmd, mesh_edge, scope);
+  cmd->add_option("--mesh-tolerance", mesh_tolerance,
+                  "With simplification: each removed vertex stays within this distance of the triangles that replace "
+                  "it (default: a tenth of --mesh-edge)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--probe", options.surface.probe, "Probe radius in Å (default 1.4)")->check(CLI::PositiveNumber);
+  cmd->add_option("--grid", options.surface.grid, "Grid spacing of the molecular surface in Å (default 0.5)")
+      ->check(CLI::Range(0.05, 5.0));
+  cmd->add_option("--model", options.structure.model, "Model to read: 1 = the first (default), N = the N-th")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--chains", chains, "Chains to keep, comma-separated (default: all)");
+  cmd->add_flag("--keep-hydrogens", options.structure.keep_hydrogens, "Keep hydrogen atoms (default: removed)");
+  cmd->add_flag("--keep-waters", options.structure.keep_waters, "Keep waters (default: removed)");
+  cmd->add_flag("--no-hetero", no_hetero, "Remove ligands, ions and other HETATM groups (default: kept)");
+  cmd->add_option("--radii", radii_file, "Radius table: 'ELEMENT RADIUS' per line (default: Bondi 1964)");
+  cmd->add_option("--preset", preset, preset_help(scope))->check(CLI::IsMember({"paper", "fast"}));
+  cmd->add_flag("--cavities", cavities,
+                "Carve internal cavities that hold a probe, as separate reported components (default: filled, as "
+                "MSMS's outer surface; with it, pockets within a probe diameter of the outside open into the outer "
+                "surface)");
+  cmd->add_flag("--keep-topology", options.keep_topology,
+                "Do not repair handles of the molecular surface (map: refuse a surface of genus > 0, the paper's "
+                "filter)");
+}
+
+void StructureCliOptions::apply(MapJobOptions& options) const {
+  if (!chains.empty()) {
+    std::stringstream list(chains);
+    for (std::string chain; std::getline(list, chain, ',');)
+      if (!chain.empty()) options.structure.chains.push_back(chain);
+  }
+  options.structure.keep_hetero = !no_hetero;
+  if (cavities) options.surface.carve_cavities = true;
+  if (!radii_file.empty()) options.structure.radii = load_radius_table(radii_file);
+  ExplicitOptions given;
+  given.probe = command->count("--probe") != 0;
+  given.grid = command->count("--grid") != 0;
+  given.mesh_edge = mesh_edge >= 0;
+  const CLI::Option* equalizing = command->get_option_no_throw("--equalizing-rounds");
+  given.equalizing_rounds = equalizing != nullptr && equalizing->count() != 0;
+  apply_preset(parse_preset(preset), options, given, scope_);
+  if (mesh_edge >= 0) {
+    options.simplify.target_edge_length = mesh_edge;
+    options.simplify_mesh_files = mesh_edge > 0;
+  }
+  options.simplify.max_error = mesh_tolerance > 0 ? mesh_tolerance : options.simplify.target_edge_length / 10;
+}
+
+void MapCliOptions::add(CLI::App* command, WeightingCount count) {
+  if (count == WeightingCount::kOne) {
+    command->add_option("--weights", weights,
+                        "Harmonic weights: uniform (the paper, default), cotan (may fold), mean-value")
+        ->check(CLI::IsMember({"uniform", "cotan", "mean-value"}));
+  } else {
+    command->add_option("--weights", weights,
+                        "Harmonic weights, comma-separated: uniform (default), cotan, mean-value; with several, one "
+                        "subfolder per weighting (each input is read and surfaced once)");
+  }
+  command->add_option("--solver", solver, "direct (CHOLMOD/UMFPACK, default) or gauss-seidel (the paper's relaxation)")
+      ->check(CLI::IsMember({"direct", "gauss-seidel"}));
+  command->add_option("--component", component,
+                      "Which connected component to map: 'largest' or a number (meshes: file order, default refuse; "
+                      "structures: by decreasing area, default 0 = the outer surface)");
+  command->add_option("--weld-tolerance", job.prepare.weld_tolerance,
+                      "Weld vertices closer than this (default 0: exactly coincident only)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--collapse-floor", job.map.collapse_floor,
+                      "Normalized area ratio below which a triangle counts as collapsed (default 1e-6)")
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--ascii", job.ascii, "Write ASCII PLY with full precision (%.17g), e.g. for PyMOL");
+  add_equalizing_rounds_option(command, job.map);
+  command->add_flag("--no-repair", no_repair,
+                    "The paper's algorithm only: no re-weighting, no untangling (the certificate still runs)");
+  structure.add(command, job);
+}
+
+void MapCliOptions::apply() {
+  structure.apply(job);
+  job.map.weights = weightings().front();
+  job.map.solver = solver == "gauss-seidel" ? Solver::kGaussSeidel : Solver::kDirect;
+  if (!component.empty()) job.prepare.component = parse_component(component);
+  job.map.repair = !no_repair;
+}
+
+std::vector<Weights> MapCliOptions::weightings() const {
+  std::vector<Weights> list;
+  std::stringstream names(weights);
+  for (std::string name; std::getline(names, name, ',');) {
+    const Weights w = parse_weights(name);
+    if (std::find(list.begin(), list.end(), w) != list.end())
+      throw InputError(fmt::format("--weights '{}': {} is listed twice", weights, name));
+    list.push_back(w);
+  }
+  if (list.empty()) throw InputError("--weights: expected uniform, cotan or mean-value (comma-separated)");
+  return list;
+}
+
+Weights parse_weights(const std::string& name) {
+  if (name == "uniform") return Weights::kUniform;
+  if (name == "cotan") return Weights::kCotangent;
+  if (name == "mean-value") return Weights::kMeanValue;
+  throw InputError(fmt::format("weights '{}': expected uniform, cotan or mean-value", name));
+}
+
+ComponentChoice parse_component(const std::string& text) {
+  if (text == "largest") return ComponentChoice::largest();
+  try {
+    std::size_t used = 0;
+    const int k = std::stoi(text, &used);
+    if (used == text.size() && k >= 0) return ComponentChoice::numbered(k);
+  } catch (const std::exception&) {
+  }
+  throw InputError(fmt::format("--component '{}': expected 'largest' or a component number (0, 1, ...)", text));
+}
+
+void add_output_option(CLI::App* command, std::string& output, const std::string& description) {
+  command->add_option("-o,--output", output, description)->required();
+}
+
+void add_quiet_flag(CLI::App* command, bool& quiet, const std::string& description) {
+  command->add_flag("-q,--quiet", quiet, description);
+}
+
+}  // namespace spheremap::cli

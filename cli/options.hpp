@@ -1,0 +1,76 @@
+// Command-line options shared by several subcommands, registered once: the map options (map, batch), the
+// structure and surface options (map, batch, surface), and the small pieces every command has.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/pipeline/presets.hpp"
+
+namespace spheremap::cli {
+
+/// Structure and surface options shared by map, surface and batch. Call add() before parsing and
+/// apply() after: apply() fills `options` (chains, hetero, radius table, --preset, simplification).
+struct StructureCliOptions {
+  std::string chains, radii_file, preset;
+  bool no_hetero = false, cavities = false;
+  double mesh_edge = -1, mesh_tolerance = -1;  // -1: not given
+  CLI::App* command = nullptr;
+  /// `scope` kMap: map and batch (simplification before the map, on by default for structures);
+  /// kSurface: the surface command (simplification only when --mesh-edge is given).
+  void add(CLI::App* command, MapJobOptions& options, PresetScope scope = PresetScope::kMap);
+  /// Throws InputError for an unreadable radius table.
+  void apply(MapJobOptions& options) const;
+
+ private:
+  PresetScope scope_ = PresetScope::kMap;
+};
+
+/// How many weightings --weights takes: one (map) or a comma-separated list (batch).
+enum class WeightingCount { kOne, kSeveral };
+
+/// The options of a map job, shared by map and batch: --weights, --solver, --component,
+/// --weld-tolerance, --collapse-floor, --ascii, --equalizing-rounds, --no-repair and the structure
+/// options. Call add() before parsing and apply() after.
+struct MapCliOptions {
+  MapJobOptions job;
+  std::string weights = "uniform", solver = "direct", component;
+  bool no_repair = false;
+  StructureCliOptions structure;
+  void add(CLI::App* command, WeightingCount count);
+  /// Fills `job` (with the first weighting of weightings()). Throws InputError for a bad --weights or
+  /// --component, or an unreadable radius table.
+  void apply();
+  /// --weights as a list: each once. Throws InputError for an unknown or repeated name, or none.
+  std::vector<Weights> weightings() const;
+};
+
+/// Harmonic weights by their CLI name (uniform, cotan, mean-value). Throws InputError for another name.
+Weights parse_weights(const std::string& name);
+
+/// --component: 'largest' or a component number. Throws InputError for anything else.
+ComponentChoice parse_component(const std::string& text);
+
+/// A subcommand and the state its options write into, which its `run` reads after parsing.
+template <typename State>
+struct NewCommand {
+  std::shared_ptr<State> state = std::make_shared<State>();
+  CLI::App* app = nullptr;
+};
+template <typename State>
+NewCommand<State> new_command(CLI::App& parent, const std::string& name, const std::string& description) {
+  NewCommand<State> command;
+  command.app = parent.add_subcommand(name, description);
+  return command;
+}
+
+/// -o,--output (required).
+void add_output_option(CLI::App* command, std::string& output, const std::string& description);
+/// -q,--quiet.
+void add_quiet_flag(CLI::App* command, bool& quiet, const std::string& description = "Print nothing on success");
+
+}  // namespace spheremap::cli
