@@ -62,12 +62,19 @@ std::string duration_text(double seconds) {
   return fmt::format("{}h{:02}m", s / 3600, (s % 3600) / 60);
 }
 
-struct BatchState {
+struct BatchCommand {
+  static constexpr const char* kName = "batch";
+  static constexpr const char* kDescription =
+      "Map many meshes and structures (files, folders, glob patterns, @lists) in parallel into one folder each, "
+      "with a summary (summary.csv, summary.jsonl); re-running resumes";
+
   std::vector<std::string> inputs;
   std::string output;
   int jobs = 0;
   MapCliOptions map;
   bool quiet = false, force = false, retry_errors = false;
+  void add(CLI::App* command);
+  int run();
 };
 
 class Reporter {
@@ -139,7 +146,7 @@ class Reporter {
 };
 
 // Ctrl-C once: no new input is started; twice: the running ones are abandoned, the summary written.
-BatchCallbacks interrupt_callbacks(const BatchState& s, const BatchOptions& batch,
+BatchCallbacks interrupt_callbacks(const BatchCommand& s, const BatchOptions& batch,
                                    const std::vector<BatchInput>& inputs, Reporter& reporter) {
   BatchCallbacks callbacks;
   auto announced = std::make_shared<bool>(false);
@@ -186,7 +193,7 @@ BatchCallbacks interrupt_callbacks(const BatchState& s, const BatchOptions& batc
 }
 
 // The last line: counts by status, where the summary is; the exit code (128 + signal when interrupted).
-int report_end(const BatchState& s, const BatchOptions& batch, const BatchResult& result, std::size_t inputs) {
+int report_end(const BatchCommand& s, const BatchOptions& batch, const BatchResult& result, std::size_t inputs) {
   std::size_t counts[4] = {0, 0, 0, 0};
   for (const auto& row : result.rows) {
     const auto status = row.at("status").get<std::string>();
@@ -207,45 +214,40 @@ int report_end(const BatchState& s, const BatchOptions& batch, const BatchResult
   return code;
 }
 
-int run_batch_command(BatchState& s) {
-  s.map.apply();
-  BatchOptions batch;
-  batch.weights = s.map.weightings();
-  batch.job = s.map.job;
-  batch.jobs = s.jobs > 0 ? s.jobs : available_cores();
-  batch.force = s.force;
-  batch.retry_errors = s.retry_errors;
-  const auto inputs = name_batch_inputs(expand_batch_inputs(s.inputs));
-  Reporter reporter(inputs, batch.weights, s.quiet);
-  install_signal_handlers();
-  const BatchResult result = run_batch(s.output, inputs, batch, interrupt_callbacks(s, batch, inputs, reporter));
-  reporter.clear_bar();
-  return report_end(s, batch, result, inputs.size());
-}
-
-}  // namespace
-
-Command add_batch_command(CLI::App& app) {
-  const auto made = new_command<BatchState>(
-      app, "batch",
-      "Map many meshes and structures (files, folders, glob patterns, @lists) in parallel into one folder each, "
-      "with a summary (summary.csv, summary.jsonl); re-running resumes");
-  auto& s = *made.state;
-  CLI::App* command = made.app;
-  command->add_option("inputs", s.inputs,
+void BatchCommand::add(CLI::App* command) {
+  command->add_option("inputs", inputs,
                       "Inputs: files; folders (their .obj .off .ply .stl .pdb .ent .cif .mmcif .pqr (.gz) files, not "
                       "recursive); glob patterns ('data/*.pdb', quoted or expanded by the shell); @LIST or LIST.txt "
                       "(one input per line, relative to the list's folder)")
       ->required();
-  add_output_option(command, s.output,
+  add_output_option(command, output,
                     "Output root: one folder per input (per weighting with several), summary.csv, summary.jsonl");
-  command->add_option("--jobs", s.jobs, "Inputs mapped at once (default: all cores; each needs its own memory)")
+  command->add_option("--jobs", jobs, "Inputs mapped at once (default: all cores; each needs its own memory)")
       ->check(CLI::PositiveNumber);
-  command->add_flag("--force", s.force, "Redo every input, even those already complete (also when options changed)");
-  command->add_flag("--retry-errors", s.retry_errors, "Redo the inputs that failed before (error.json)");
-  add_quiet_flag(command, s.quiet, "No progress; print only the inputs that fail or are not certified");
-  s.map.add(command, WeightingCount::kSeveral);
-  return {command, [state = made.state]() { return run_batch_command(*state); }};
+  command->add_flag("--force", force, "Redo every input, even those already complete (also when options changed)");
+  command->add_flag("--retry-errors", retry_errors, "Redo the inputs that failed before (error.json)");
+  add_quiet_flag(command, quiet, "No progress; print only the inputs that fail or are not certified");
+  map.add(command, WeightingCount::kSeveral);
 }
+
+int BatchCommand::run() {
+  map.apply();
+  BatchOptions batch;
+  batch.weights = map.weightings();
+  batch.job = map.job;
+  batch.jobs = jobs > 0 ? jobs : available_cores();
+  batch.force = force;
+  batch.retry_errors = retry_errors;
+  const auto named = name_batch_inputs(expand_batch_inputs(inputs));
+  Reporter reporter(named, batch.weights, quiet);
+  install_signal_handlers();
+  const BatchResult result = run_batch(output, named, batch, interrupt_callbacks(*this, batch, named, reporter));
+  reporter.clear_bar();
+  return report_end(*this, batch, result, named.size());
+}
+
+}  // namespace
+
+Command add_batch_command(CLI::App& app) { return make_command<BatchCommand>(app); }
 
 }  // namespace spheremap::cli

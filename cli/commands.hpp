@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 
 #include <CLI/CLI.hpp>
 
@@ -15,6 +16,17 @@ struct Command {
   CLI::App* app = nullptr;
   std::function<int()> run;
 };
+
+/// Registers the subcommand whose name, description, options and work live in a `State`: State::kName,
+/// State::kDescription, State::add(CLI::App*) registers the options into its members, State::run() runs
+/// after parsing.
+template <typename State>
+Command make_command(CLI::App& parent) {
+  auto state = std::make_shared<State>();
+  CLI::App* app = parent.add_subcommand(State::kName, State::kDescription);
+  state->add(app);
+  return {app, [state] { return state->run(); }};
+}
 
 Command add_map_command(CLI::App& app);
 Command add_surface_command(CLI::App& app);

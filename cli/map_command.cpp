@@ -13,10 +13,17 @@
 namespace spheremap::cli {
 namespace {
 
-struct MapState {
+struct MapCommand {
+  static constexpr const char* kName = "map";
+  static constexpr const char* kDescription =
+      "Map a closed genus-0 mesh (OBJ, OFF, PLY, STL), or the molecular surface of a structure (PDB, mmCIF, PQR), "
+      "onto the unit sphere";
+
   std::string input, output, poles, components = "outer";
   MapCliOptions map;
   bool quiet = false;
+  void add(CLI::App* command);
+  int run();
 };
 
 std::pair<std::int32_t, std::int32_t> parse_poles(const std::string& text) {
@@ -34,7 +41,7 @@ std::pair<std::int32_t, std::int32_t> parse_poles(const std::string& text) {
 }
 
 // --components all: every genus-0 component of the molecular surface into OUTPUT/component-K.
-int map_every_component(const MapState& s) {
+int map_every_component(const MapCommand& s) {
   if (!s.map.component.empty()) throw InputError("--component and --components all exclude each other");
   const auto results = run_map_job_components(s.input, s.map.job);
   if (results.empty())
@@ -56,7 +63,7 @@ int map_every_component(const MapState& s) {
   return code;
 }
 
-int map_one(const MapState& s) {
+int map_one(const MapCommand& s) {
   const auto result = run_map_job(s.input, s.map.job);
   write_map_outputs(s.output, result, s.map.job);
   const auto& c = result.map.certificate;
@@ -73,37 +80,32 @@ int map_one(const MapState& s) {
   return static_cast<int>(ExitCode::kNotCertified);
 }
 
-}  // namespace
-
-Command add_map_command(CLI::App& app) {
-  const auto made = new_command<MapState>(
-      app, "map",
-      "Map a closed genus-0 mesh (OBJ, OFF, PLY, STL), or the molecular surface of a structure (PDB, mmCIF, PQR), "
-      "onto the unit sphere");
-  auto& s = *made.state;
-  CLI::App* command = made.app;
-  command->add_option("input", s.input,
-                      "Mesh file: .obj .off .ply (ASCII/binary) .stl (ASCII/binary); or structure file: .pdb .ent .cif "
-                      ".mmcif (also .gz) .pqr")
+void MapCommand::add(CLI::App* command) {
+  command->add_option("input", input,
+                      "Mesh file: .obj .off .ply (ASCII/binary) .stl (ASCII/binary); or structure file: .pdb .ent "
+                      ".cif .mmcif (also .gz) .pqr")
       ->required();
-  add_output_option(command, s.output, "Output folder: surface.ply, sphere.ply, report.json");
-  command->add_option("--poles", s.poles,
-                      "North and south pole vertices 'i,j': 0-based indices in the input file's vertex order, at least "
-                      "3 edges apart; default: the two vertices farthest apart");
-  command->add_option("--components", s.components,
+  add_output_option(command, output, "Output folder: surface.ply, sphere.ply, report.json");
+  command->add_option("--poles", poles,
+                      "North and south pole vertices 'i,j': 0-based indices in the input file's vertex order, at "
+                      "least 3 edges apart; default: the two vertices farthest apart");
+  command->add_option("--components", components,
                       "Structures: 'outer' (default: the outer surface; cavities and detached pieces reported) or "
                       "'all' (every genus-0 component on its own sphere, in OUTPUT/component-K/, K by decreasing "
                       "area)")
       ->check(CLI::IsMember({"outer", "all"}));
-  add_quiet_flag(command, s.quiet);
-  s.map.add(command, WeightingCount::kOne);
-
-  return {command, [state = made.state]() {
-            auto& s = *state;
-            s.map.apply();
-            if (!s.poles.empty()) s.map.job.map.poles = parse_poles(s.poles);
-            return s.components == "all" ? map_every_component(s) : map_one(s);
-          }};
+  add_quiet_flag(command, quiet);
+  map.add(command, WeightingCount::kOne);
 }
+
+int MapCommand::run() {
+  map.apply();
+  if (!poles.empty()) map.job.map.poles = parse_poles(poles);
+  return components == "all" ? map_every_component(*this) : map_one(*this);
+}
+
+}  // namespace
+
+Command add_map_command(CLI::App& app) { return make_command<MapCommand>(app); }
 
 }  // namespace spheremap::cli

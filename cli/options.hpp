@@ -2,7 +2,6 @@
 // structure and surface options (map, batch, surface), and the small pieces every command has.
 #pragma once
 
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,19 +53,6 @@ Weights parse_weights(const std::string& name);
 
 /// --component: 'largest' or a component number. Throws InputError for anything else.
 ComponentChoice parse_component(const std::string& text);
-
-/// A subcommand and the state its options write into, which its `run` reads after parsing.
-template <typename State>
-struct NewCommand {
-  std::shared_ptr<State> state = std::make_shared<State>();
-  CLI::App* app = nullptr;
-};
-template <typename State>
-NewCommand<State> new_command(CLI::App& parent, const std::string& name, const std::string& description) {
-  NewCommand<State> command;
-  command.app = parent.add_subcommand(name, description);
-  return command;
-}
 
 /// -o,--output (required).
 void add_output_option(CLI::App* command, std::string& output, const std::string& description);

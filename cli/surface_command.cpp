@@ -10,76 +10,85 @@
 
 namespace spheremap::cli {
 namespace {
-struct SurfaceState {
+
+// What `surface` prints: sizes, components, simplification, warnings, repair, timings.
+void print_surface(const std::string& output, const MapJobOptions& options, const MolecularSurface& result,
+                   const TopologyRepair& repair, const SimplifyReport& simplification,
+                   const StructureReport& structure) {
+  const Mesh& surface = result.mesh;
+  double area = 0;
+  for (const auto& c : result.components) area += c.area;
+  std::cout << fmt::format("{}: {} vertices, {} triangles; contour area {:.1f} Å² (all components; probe {} Å, grid "
+                           "{} Å)\n",
+                           output, surface.vertex_count(), surface.triangle_count(), area, options.surface.probe,
+                           options.surface.grid);
+  for (std::size_t c = 0; c < result.reports.size(); ++c) {
+    const auto& r = result.reports[c];
+    std::cout << fmt::format("  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} "
+                             "residues\n",
+                             c, to_string(r.kind), r.triangles, r.area, r.volume, r.genus, r.residue_count);
+  }
+  if (options.simplify.target_edge_length > 0)
+    std::cout << fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g} Å), area {:.1f} -> {:.1f} "
+                             "Å², every removed vertex within {:.3g} Å of the result\n",
+                             simplification.vertices_before, simplification.vertices_after,
+                             simplification.mean_edge_before, simplification.mean_edge_after,
+                             simplification.area_before, simplification.area_after,
+                             simplification.max_vertex_distance);
+  for (const auto& warning : structure.warnings) std::cout << "  warning: " << warning << "\n";
+  if (repair.method != "none")
+    std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
+                             "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
+                             repair.method, repair.genus_before, repair.changes.size(), repair.samples_changed,
+                             repair.area_before, repair.area_after, 100 * (repair.area_after / repair.area_before - 1));
+  else if (repair.genus_before != 0)
+    std::cout << fmt::format("  outer surface genus {} (--keep-topology: not repaired)\n", repair.genus_before);
+  std::string stages;
+  for (const auto& t : result.timings)
+    stages += fmt::format("{}{} {:.2f} s", stages.empty() ? "" : ", ", t.stage, t.seconds);
+  std::cout << "  timings: " << stages << "\n";
+}
+
+struct SurfaceCommand {
+  static constexpr const char* kName = "surface";
+  static constexpr const char* kDescription =
+      "Write the solvent-excluded surface of a structure (PDB, mmCIF, PQR) as PLY, every component, with atom "
+      "provenance (and each atom's B-factor, or PQR charge, per vertex)";
+
   std::string input, output;
   MapJobOptions options;
   StructureCliOptions structure;
   bool quiet = false;
+
+  void add(CLI::App* command) {
+    command->add_option("input", input, "Structure file: .pdb .ent .cif .mmcif (also .gz) .pqr")->required();
+    add_output_option(command, output, "Output .ply file");
+    command->add_flag("--ascii", options.ascii, "ASCII PLY with full precision (%.17g)");
+    add_quiet_flag(command, quiet);
+    structure.add(command, options, PresetScope::kSurface);
+  }
+
+  int run() {
+    structure.apply(options);
+    const Molecule molecule = read_structure(input, options.structure);
+    TopologyRepair repair;
+    MolecularSurface result;
+    try {
+      result = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &repair);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", input, e.what()));
+    }
+    SimplifyReport simplification;
+    if (options.simplify.target_edge_length > 0)
+      result.mesh = simplify_surface(std::move(result.mesh), options.simplify, &simplification);
+    write_ply(output, result.mesh, PlyWriteOptions{options.ascii});
+    if (!quiet) print_surface(output, options, result, repair, simplification, molecule.report);
+    return 0;
+  }
 };
+
 }  // namespace
 
-Command add_surface_command(CLI::App& app) {
-  const auto made = new_command<SurfaceState>(
-      app, "surface",
-      "Write the solvent-excluded surface of a structure (PDB, mmCIF, PQR) as PLY, every component, with atom "
-      "provenance (and each atom's B-factor, or PQR charge, per vertex)");
-  auto& s = *made.state;
-  CLI::App* command = made.app;
-  command->add_option("input", s.input, "Structure file: .pdb .ent .cif .mmcif (also .gz) .pqr")->required();
-  add_output_option(command, s.output, "Output .ply file");
-  command->add_flag("--ascii", s.options.ascii, "ASCII PLY with full precision (%.17g)");
-  add_quiet_flag(command, s.quiet);
-  s.structure.add(command, s.options, PresetScope::kSurface);
-
-  return {command, [state = made.state]() {
-            auto& s = *state;
-            s.structure.apply(s.options);
-            const Molecule molecule = read_structure(s.input, s.options.structure);
-            TopologyRepair repair;
-            MolecularSurface result;
-            try {
-              result = repaired_surface(molecule.atoms, s.options.surface, s.options.keep_topology, &repair);
-            } catch (const InputError& e) {
-              throw InputError(fmt::format("{}: {}", s.input, e.what()));
-            }
-            SimplifyReport simplification;
-            if (s.options.simplify.target_edge_length > 0)
-              result.mesh = simplify_surface(std::move(result.mesh), s.options.simplify, &simplification);
-            const Mesh& surface = result.mesh;
-            write_ply(s.output, surface, PlyWriteOptions{s.options.ascii});
-            if (!s.quiet) {
-              double area = 0;
-              for (const auto& c : result.components) area += c.area;
-              std::cout << fmt::format("{}: {} vertices, {} triangles; contour area {:.1f} Å² (all components; probe {} Å, grid {} Å)\n",
-                                       s.output, surface.vertex_count(), surface.triangle_count(), area,
-                                       s.options.surface.probe, s.options.surface.grid);
-              for (std::size_t c = 0; c < result.reports.size(); ++c) {
-                const auto& r = result.reports[c];
-                std::cout << fmt::format("  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} residues\n",
-                                         c, to_string(r.kind), r.triangles, r.area, r.volume, r.genus, r.residue_count);
-              }
-              if (s.options.simplify.target_edge_length > 0)
-                std::cout << fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g} Å), area {:.1f} -> {:.1f} "
-                                         "Å², every removed vertex within {:.3g} Å of the result\n",
-                                         simplification.vertices_before, simplification.vertices_after,
-                                         simplification.mean_edge_before, simplification.mean_edge_after,
-                                         simplification.area_before, simplification.area_after,
-                                         simplification.max_vertex_distance);
-              for (const auto& warning : molecule.report.warnings) std::cout << "  warning: " << warning << "\n";
-              if (repair.method != "none")
-                std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
-                                         "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
-                                         repair.method, repair.genus_before, repair.changes.size(), repair.samples_changed,
-                                         repair.area_before, repair.area_after,
-                                         100 * (repair.area_after / repair.area_before - 1));
-              else if (repair.genus_before != 0)
-                std::cout << fmt::format("  outer surface genus {} (--keep-topology: not repaired)\n", repair.genus_before);
-              std::string stages;
-              for (const auto& t : result.timings) stages += fmt::format("{}{} {:.2f} s", stages.empty() ? "" : ", ", t.stage, t.seconds);
-              std::cout << "  timings: " << stages << "\n";
-            }
-            return 0;
-          }};
-}
+Command add_surface_command(CLI::App& app) { return make_command<SurfaceCommand>(app); }
 
 }  // namespace spheremap::cli

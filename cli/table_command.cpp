@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
+#include "spheremap/pipeline/run_folder.hpp"
 #include "spheremap/render/figure4.hpp"
 #include "spheremap/render/plot.hpp"
 #include "spheremap/reproduction/figure4.hpp"
@@ -20,9 +21,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TableState {
+struct TableCommand {
   std::string runs_dir, output;
   bool quiet = false;
+
+  static constexpr const char* kName = "table";
+  static constexpr const char* kDescription =
+      "The paper's Table 1 (table1.md) and Figure 4 (figure4a-WEIGHTS and figure4b, PNG and SVG) from every "
+      "report.json under RUNS_DIR (output of spheremap batch, or of several spheremap map runs)";
+
+  void add(CLI::App* command) {
+    command->add_option("runs_dir", runs_dir, "Folder searched recursively for report.json")->required();
+    command->add_option("-o,--output", output, "Folder for table1.md and the figures (default: RUNS_DIR)");
+    add_quiet_flag(command, quiet);
+  }
+  int run() const;
 };
 
 // Protocol names become file names: keep letters, digits and '-'.
@@ -108,48 +121,40 @@ void print_summaries(const fs::path& runs_dir, const fs::path& output, std::size
   std::cout << fmt::format("  wrote {} and {}\n", (output / "table1.md").string(), fmt::join(written, ", "));
 }
 
-int run_table(const TableState& s) {
-  const fs::path runs_dir = s.runs_dir;
-  const std::vector<fs::path> found = find_reports(runs_dir);
+int TableCommand::run() const {
+  const fs::path runs = runs_dir;
+  const std::vector<fs::path> found = find_reports(runs);
   if (found.empty())
     throw InputError(fmt::format("{}: no report.json found (searched every subfolder); run spheremap batch "
                                  "or spheremap map into this folder first",
-                                 runs_dir.string()));
+                                 runs.string()));
   std::vector<ReportSummary> reports;
   reports.reserve(found.size());
   for (const auto& report : found) reports.push_back(read_report_file(report));
 
-  const fs::path output = s.output.empty() ? runs_dir : fs::path(s.output);
+  const fs::path output_dir = output.empty() ? runs : fs::path(output);
   std::error_code error;
-  fs::create_directories(output, error);
-  if (error) throw InputError(fmt::format("{}: cannot create the output folder: {}", output.string(), error.message()));
+  fs::create_directories(output_dir, error);
+  if (error)
+    throw InputError(fmt::format("{}: cannot create the output folder: {}", output_dir.string(), error.message()));
 
   const auto summaries = summarize_protocols(reports);
   Table1Context context;
-  context.runs_dir = runs_dir.string();
+  context.runs_dir = runs.string();
   context.reports_found = static_cast<std::int64_t>(found.size());
-  context.error_runs = static_cast<std::int64_t>(find_files_named(runs_dir, "error.json").size());
+  context.error_runs = static_cast<std::int64_t>(find_files_named(runs, kRunErrorFile).size());
   context.warnings = duplicate_runs(reports);
-  std::vector<std::string> written = write_figure4a(output, reports, summaries, context);
-  for (auto& file : write_figure4b(output, reports, context)) written.push_back(std::move(file));
+  std::vector<std::string> written = write_figure4a(output_dir, reports, summaries, context);
+  for (auto& file : write_figure4b(output_dir, reports, context)) written.push_back(std::move(file));
 
-  write_file_atomically(output / "table1.md", table1_markdown(summaries, reports, context));
+  write_file_atomically(output_dir / "table1.md", table1_markdown(summaries, reports, context));
   for (const auto& w : context.warnings) std::cerr << "spheremap: warning: " << w << "\n";
-  if (!s.quiet) print_summaries(runs_dir, output, found.size(), summaries, context, written);
+  if (!quiet) print_summaries(runs, output_dir, found.size(), summaries, context, written);
   return 0;
 }
 
 }  // namespace
 
-Command add_table_command(CLI::App& app) {
-  const auto made = new_command<TableState>(
-      app, "table",
-      "The paper's Table 1 (table1.md) and Figure 4 (figure4a-WEIGHTS and figure4b, PNG and SVG) from every "
-      "report.json under RUNS_DIR (output of spheremap batch, or of several spheremap map runs)");
-  made.app->add_option("runs_dir", made.state->runs_dir, "Folder searched recursively for report.json")->required();
-  made.app->add_option("-o,--output", made.state->output, "Folder for table1.md and the figures (default: RUNS_DIR)");
-  add_quiet_flag(made.app, made.state->quiet);
-  return {made.app, [state = made.state]() { return run_table(*state); }};
-}
+Command add_table_command(CLI::App& app) { return make_command<TableCommand>(app); }
 
 }  // namespace spheremap::cli

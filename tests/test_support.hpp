@@ -75,14 +75,22 @@ inline CliRun run_cli(const std::string& arguments) {
 }
 #endif
 
-/// The structure files of `pdb`/paper77 and `pdb`/misc (../shared/data/pdb), sorted by path.
-inline std::vector<std::filesystem::path> shared_structure_files(const std::filesystem::path& pdb) {
-  std::vector<std::filesystem::path> files;
-  for (const char* set : {"paper77", "misc"})
-    for (const auto& entry : std::filesystem::directory_iterator(pdb / set)) files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
+#ifdef SPHEREMAP_SHARED_DATA_DIR
+/// A fixture over the 88 structure files of ../shared/data/pdb (paper77 and misc) in `files_`, sorted by
+/// path; the test is skipped, saying so, when the shared data is absent.
+class SharedStructuresTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const std::filesystem::path pdb = std::filesystem::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb";
+    if (!std::filesystem::exists(pdb)) GTEST_SKIP() << "shared data not found: " << pdb << " (skipped on purpose)";
+    for (const char* set : {"paper77", "misc"})
+      for (const auto& entry : std::filesystem::directory_iterator(pdb / set)) files_.push_back(entry.path());
+    std::sort(files_.begin(), files_.end());
+    ASSERT_EQ(files_.size(), 88u);
+  }
+  std::vector<std::filesystem::path> files_;
+};
+#endif
 
 /// Every directed edge once and its reverse once (closed, consistently oriented), and every vertex's
 /// triangles one fan (build_vertex_rings throws otherwise).

@@ -67,10 +67,7 @@ PolygonSoup read_obj(std::string_view bytes, const std::string& file) {
   std::size_t line_number = 0;
   std::size_t line_start = 0;
   while (line_start < bytes.size()) {
-    std::size_t line_end = bytes.find('\n', line_start);
-    if (line_end == std::string_view::npos) line_end = bytes.size();
-    std::string_view rest = bytes.substr(line_start, line_end - line_start);
-    line_start = line_end + 1;
+    std::string_view rest = take_line(bytes, line_start);
     ++line_number;
 
     const std::string_view keyword = take_token(rest);

@@ -49,6 +49,16 @@ inline std::string_view take_token(std::string_view& rest) {
   return token;
 }
 
+/// The line of `bytes` that starts at `line_start` (without its '\n'); moves `line_start` past it.
+/// Precondition: line_start <= bytes.size().
+inline std::string_view take_line(std::string_view bytes, std::size_t& line_start) {
+  std::size_t line_end = bytes.find('\n', line_start);
+  if (line_end == std::string_view::npos) line_end = bytes.size();
+  const std::string_view line = bytes.substr(line_start, line_end - line_start);
+  line_start = line_end + 1;
+  return line;
+}
+
 /// Parses a decimal number that fills `token` exactly ("1", "-2.5e3", "+.5", "inf", "nan").
 /// Non-finite values are accepted here; read_polygon_soup rejects them with the vertex number.
 inline bool parse_double(std::string_view token, double& value) {

@@ -17,16 +17,12 @@
 
 #include "batch_manifest.hpp"
 #include "batch_worker.hpp"
-#include "seconds.hpp"
-#include "text.hpp"
+#include "detail.hpp"
 
 namespace spheremap {
 namespace {
 
-namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;
-using pipeline_detail::capture;
-using pipeline_detail::seconds_since;
+using namespace pipeline_detail;
 
 void check_preconditions(const std::vector<BatchInput>& inputs, const BatchOptions& options) {
   const auto& weights = options.weights;

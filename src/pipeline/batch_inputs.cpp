@@ -13,15 +13,12 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/pipeline/molecular_surface.hpp"
-#include "text.hpp"
+#include "detail.hpp"
 
 namespace spheremap {
 namespace {
 
-namespace fs = std::filesystem;
-using pipeline_detail::lower;
-using pipeline_detail::read_text;
-using pipeline_detail::trim;
+using namespace pipeline_detail;
 
 constexpr int kMaxListDepth = 8;
 

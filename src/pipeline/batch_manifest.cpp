@@ -8,15 +8,12 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
-#include "text.hpp"
+#include "detail.hpp"
 
 namespace spheremap {
 namespace {
 
-namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;
-using pipeline_detail::dump;
-using pipeline_detail::read_text;
+using namespace pipeline_detail;
 
 Json component_json(const ComponentChoice& choice) {
   switch (choice.mode) {

@@ -13,12 +13,10 @@
 #include <csignal>
 #include <cstring>
 
-#include "seconds.hpp"
+#include "detail.hpp"
 
 namespace spheremap::pipeline_detail {
 namespace {
-
-namespace fs = std::filesystem;
 
 // The runs of `input` under `root`, by weighting.
 struct InputRuns {

@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "seconds.hpp"
+#include "detail.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/atomic_file.hpp"
@@ -19,7 +19,7 @@
 namespace spheremap {
 namespace {
 
-using pipeline_detail::seconds_since;
+using namespace pipeline_detail;
 
 // Poles are given as indices in the input file; the map wants indices in the prepared mesh.
 MapOptions map_options_for(const PreparedMesh& prepared, const MapJobOptions& options, const std::string& name) {

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "seconds.hpp"
+#include "detail.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/handles.hpp"
 #include "spheremap/surface/provenance.hpp"
@@ -21,20 +21,13 @@ namespace spheremap {
 using pipeline_detail::seconds_since;
 
 const char* to_string(SurfaceComponentKind kind) {
-  switch (kind) {
-    case SurfaceComponentKind::kOuter: return "outer";
-    case SurfaceComponentKind::kPiece: return "piece";
-    case SurfaceComponentKind::kCavity: return "cavity";
-  }
-  return "?";
+  constexpr const char* kNames[] = {"outer", "piece", "cavity"};  // in the order of the enum
+  return kNames[static_cast<int>(kind)];
 }
 
 bool is_structure_file(const std::filesystem::path& path) {
   std::filesystem::path p = path;
-  auto lower = [](std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-    return text;
-  };
+  using pipeline_detail::lower;
   if (lower(p.extension().string()) == ".gz") p = p.stem();
   const auto extension = lower(p.extension().string());
   return extension == ".pdb" || extension == ".ent" || extension == ".cif" || extension == ".mmcif" ||

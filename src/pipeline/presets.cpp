@@ -15,12 +15,8 @@ Preset parse_preset(std::string_view name) {
 }
 
 const char* to_string(Preset preset) {
-  switch (preset) {
-    case Preset::kNone: return "";
-    case Preset::kPaper: return "paper";
-    case Preset::kFast: return "fast";
-  }
-  return "?";
+  constexpr const char* kNames[] = {"", "paper", "fast"};  // in the order of the enum
+  return kNames[static_cast<int>(preset)];
 }
 
 void apply_preset(Preset preset, MapJobOptions& options, const ExplicitOptions& given, PresetScope scope) {

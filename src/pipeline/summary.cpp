@@ -11,76 +11,52 @@
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/pipeline/run_folder.hpp"
-#include "text.hpp"
+#include "detail.hpp"
 
 namespace spheremap {
 namespace {
 
-namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;
-using pipeline_detail::dump;
+using namespace pipeline_detail;
 
 constexpr int kOctants = 8;
 
 // report.json holds null where a number was not finite (JSON has no NaN): so does the row.
 Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
+// Sets the columns given (each one of summary_columns()).
+void put(Json& row, std::initializer_list<std::pair<const char*, Json>> columns) {
+  for (const auto& [column, value] : columns) row[column] = value;
+}
+
 void set_structure_columns(Json& row, const ReportStructure& s) {
   const ReportTopologyRepair& t = s.topology_repair;
-  row["atoms"] = s.atoms;
-  row["probe"] = number(s.probe);
-  row["grid"] = number(s.grid);
-  row["handles_cut"] = t.handles_cut;
-  row["tunnels_filled"] = t.tunnels_filled;
-  row["repair_method"] = t.method;
-  row["repair_rounds"] = t.rounds;
-  row["repair_samples_changed"] = t.samples_changed;
-  row["repair_volume_changed"] = number(t.volume_changed);
-  row["repair_area_before"] = number(t.area_before);
-  row["repair_area_after"] = number(t.area_after);
-  row["repair_area_changed_percent"] = number(t.area_changed_percent);
+  put(row, {{"atoms", s.atoms}, {"probe", number(s.probe)}, {"grid", number(s.grid)},
+            {"handles_cut", t.handles_cut}, {"tunnels_filled", t.tunnels_filled}, {"repair_method", t.method},
+            {"repair_rounds", t.rounds}, {"repair_samples_changed", t.samples_changed},
+            {"repair_volume_changed", number(t.volume_changed)}, {"repair_area_before", number(t.area_before)},
+            {"repair_area_after", number(t.area_after)},
+            {"repair_area_changed_percent", number(t.area_changed_percent)}});
 }
 
-void set_simplification_columns(Json& row, const ReportSimplification& s) {
-  row["simplified_vertices_before"] = s.vertices_before;
-  row["simplified_area_before"] = number(s.area_before);
-  row["simplified_area_after"] = number(s.area_after);
-  row["simplified_max_vertex_distance"] = number(s.max_vertex_distance);
-}
-
-void set_certificate_columns(Json& row, const std::string& prefix, const ReportCertificate& c, bool all) {
+void set_certificate_columns(Json& row, const std::string& prefix, const ReportCertificate& c) {
   row[prefix + "certified"] = c.certified;
   row[prefix + "folded"] = c.folded;
   row[prefix + "collapsed"] = c.collapsed;
   row[prefix + "coverage"] = number(c.coverage);
   row[prefix + "min_area_ratio"] = number(c.min_area_ratio);
-  if (all) row[prefix + "decided_exactly"] = c.decided_exactly;
-}
-
-void set_map_columns(Json& row, const ReportSummary& r) {
-  row["map_method"] = r.map_method;
-  row["north_pole"] = r.north_pole;
-  row["south_pole"] = r.south_pole;
-  row["pole_graph_distance"] = r.pole_graph_distance;
-  row["solver"] = r.solver;
-  row["reweighting_rounds"] = r.reweighting_rounds;
-  row["untangling_moves"] = r.untangling_moves;
-  row["superposition_rmsd"] = number(r.superposition_rmsd);
-  row["split_edges"] = r.split_edges;
 }
 
 void set_distortion_columns(Json& row, const DistortionMetrics& d) {
-  row["area_distortion_mean_percent"] = number(d.area_distortion_mean_percent);
-  row["area_distortion_max_percent"] = number(d.area_distortion_max_percent);
-  row["area_log_ratio_mean"] = number(d.area_log_ratio_mean);
-  row["angle_distortion_mean_degrees"] = number(d.angle_distortion_mean_degrees);
-  row["angle_distortion_rms_degrees"] = number(d.angle_distortion_rms_degrees);
-  row["angle_distortion_max_degrees"] = number(d.angle_distortion_max_degrees);
-  row["dilatation_mean"] = number(d.dilatation_mean);
-  row["dilatation_max"] = number(d.dilatation_max);
+  put(row, {{"area_distortion_mean_percent", number(d.area_distortion_mean_percent)},
+            {"area_distortion_max_percent", number(d.area_distortion_max_percent)},
+            {"area_log_ratio_mean", number(d.area_log_ratio_mean)},
+            {"angle_distortion_mean_degrees", number(d.angle_distortion_mean_degrees)},
+            {"angle_distortion_rms_degrees", number(d.angle_distortion_rms_degrees)},
+            {"angle_distortion_max_degrees", number(d.angle_distortion_max_degrees)},
+            {"dilatation_mean", number(d.dilatation_mean)}, {"dilatation_max", number(d.dilatation_max)},
+            {"octant_rms_deviation_percent", number(d.octant_rms_deviation_percent)}});
   for (int k = 0; k < kOctants; ++k)
     row[fmt::format("octant_area_percent_{}", k)] = number(d.octant_area_percent[static_cast<std::size_t>(k)]);
-  row["octant_rms_deviation_percent"] = number(d.octant_rms_deviation_percent);
 }
 
 // Stages of their own column; every other timing is a part of the map.
@@ -104,18 +80,22 @@ void set_timing_columns(Json& row, const std::vector<StageTime>& timings) {
 
 void set_report_columns(Json& row, const ReportSummary& r) {
   if (r.structure) set_structure_columns(row, *r.structure);
-  row["vertices"] = r.vertices;
-  row["triangles"] = r.triangles;
-  row["input_vertices"] = r.input_vertices;
-  row["input_faces"] = r.input_faces;
-  row["components"] = r.components;
   // Meshes are never repaired: their genus is the mesh's. Structures: the outer surface before the
   // handle repair.
-  row["genus_before_repair"] = r.structure ? r.structure->topology_repair.genus_before : r.genus;
-  if (r.simplification) set_simplification_columns(row, *r.simplification);
-  set_map_columns(row, r);
-  set_certificate_columns(row, "", r.certificate, true);
-  set_certificate_columns(row, "plain_", r.plain_certificate, false);
+  const std::int64_t genus_before = r.structure ? r.structure->topology_repair.genus_before : r.genus;
+  put(row, {{"vertices", r.vertices}, {"triangles", r.triangles}, {"input_vertices", r.input_vertices},
+            {"input_faces", r.input_faces}, {"components", r.components}, {"genus_before_repair", genus_before}});
+  if (const auto& s = r.simplification)
+    put(row, {{"simplified_vertices_before", s->vertices_before}, {"simplified_area_before", number(s->area_before)},
+              {"simplified_area_after", number(s->area_after)},
+              {"simplified_max_vertex_distance", number(s->max_vertex_distance)}});
+  put(row, {{"map_method", r.map_method}, {"north_pole", r.north_pole}, {"south_pole", r.south_pole},
+            {"pole_graph_distance", r.pole_graph_distance}, {"solver", r.solver},
+            {"reweighting_rounds", r.reweighting_rounds}, {"untangling_moves", r.untangling_moves},
+            {"superposition_rmsd", number(r.superposition_rmsd)}, {"split_edges", r.split_edges},
+            {"decided_exactly", r.certificate.decided_exactly}});
+  set_certificate_columns(row, "", r.certificate);
+  set_certificate_columns(row, "plain_", r.plain_certificate);
   set_distortion_columns(row, r.distortion);
   set_timing_columns(row, r.timings);
 }

@@ -149,45 +149,55 @@ std::vector<std::string> duplicate_runs(const std::vector<ReportSummary>& report
   return out;
 }
 
-std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const std::vector<ReportSummary>& reports,
-                            const Table1Context& context) {
-  std::string md;
-  md += "# Table 1 and Figure 4 (Rahi & Sharp), reproduced by spheremap\n\n";
-  md += fmt::format("Runs: every `report.json` under `{}` ({} found), grouped by `options.weights`{}. "
-                    "Written by `spheremap table`.\n\n",
-                    context.runs_dir, context.reports_found,
-                    context.error_runs == 0 ? std::string()
-                                            : fmt::format("; {} failed run(s) (`error.json`, no map) not counted",
-                                                          context.error_runs));
+namespace {
 
-  md += "## Table 1\n\n";
-  md += "| Mapping protocol | Source | Surfaces | Triangles per surface | # inverted triangles, plain algorithm "
-        "(% surfaces correct) <sup>a</sup> | # inverted triangles, final map (% surfaces certified) <sup>b</sup> | "
-        "Triangle area distortion, mean (max) <sup>c</sup> | Triangle angle distortion, mean (max) <sup>d</sup> | "
-        "RMS deviation in octant area from ideal of 12.5% <sup>e</sup> |\n";
-  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|\n";
+// The protocols of our summaries and of the paper's rows, in protocol order.
+std::vector<std::string> protocol_order(const std::vector<ProtocolSummary>& summaries) {
   std::vector<std::string> order;
   for (const auto& s : summaries) order.push_back(s.weights);
   for (const auto& p : paper_table1())
     if (std::find(order.begin(), order.end(), p.weights) == order.end()) order.push_back(p.weights);
   std::stable_sort(order.begin(), order.end(),
                    [](const std::string& a, const std::string& b) { return sorted_key(a) < sorted_key(b); });
-  for (const auto& weights : order) {
+  return order;
+}
+
+std::string paper_row(const PaperRow& p) {
+  return fmt::format("| {} | Rahi & Sharp | 77 | 3,000–6,000 | {} ({:.0f}%) | – | {:.0f}% ({:.0f}%) | {:.1f}° "
+                     "({:.1f}°) | {:.1f}% |\n",
+                     protocol_title(p.weights), with_thousands(p.inverted), p.percent_correct, p.area_mean_percent,
+                     p.area_max_percent, p.angle_mean_degrees, p.angle_max_degrees, p.octant_rms_percent);
+}
+
+std::string our_row(const ProtocolSummary& s) {
+  return fmt::format("| {} | **spheremap** | {} | {}–{} | {} ({}) | {} ({}) | {:.0f}% ({:.0f}%) | {:.1f}° "
+                     "({:.1f}°) | {:.1f}% |\n",
+                     protocol_title(s.weights), s.surfaces, with_thousands(s.triangles_min),
+                     with_thousands(s.triangles_max), with_thousands(s.plain_folded_total),
+                     percent_of(s.plain_surfaces_without_folds, s.surfaces), with_thousands(s.folded_total),
+                     percent_of(s.surfaces_certified, s.surfaces), s.area_mean_of_means_percent,
+                     s.area_max_of_means_percent, s.angle_mean_of_rms_degrees, s.angle_max_of_rms_degrees,
+                     s.octant_rms_pooled_percent);
+}
+
+std::string table1_section(const std::vector<ProtocolSummary>& summaries) {
+  std::string md = "## Table 1\n\n";
+  md += "| Mapping protocol | Source | Surfaces | Triangles per surface | # inverted triangles, plain algorithm "
+        "(% surfaces correct) <sup>a</sup> | # inverted triangles, final map (% surfaces certified) <sup>b</sup> | "
+        "Triangle area distortion, mean (max) <sup>c</sup> | Triangle angle distortion, mean (max) <sup>d</sup> | "
+        "RMS deviation in octant area from ideal of 12.5% <sup>e</sup> |\n";
+  md += "|---|---|--:|--:|--:|--:|--:|--:|--:|\n";
+  for (const auto& weights : protocol_order(summaries)) {
     for (const auto& p : paper_table1())
-      if (p.weights == weights)
-        md += fmt::format("| {} | Rahi & Sharp | 77 | 3,000–6,000 | {} ({:.0f}%) | – | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) | {:.1f}% |\n",
-                          protocol_title(weights), with_thousands(p.inverted), p.percent_correct, p.area_mean_percent,
-                          p.area_max_percent, p.angle_mean_degrees, p.angle_max_degrees, p.octant_rms_percent);
+      if (p.weights == weights) md += paper_row(p);
     for (const auto& s : summaries)
-      if (s.weights == weights)
-        md += fmt::format("| {} | **spheremap** | {} | {}–{} | {} ({}) | {} ({}) | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) | {:.1f}% |\n",
-                          protocol_title(weights), s.surfaces, with_thousands(s.triangles_min), with_thousands(s.triangles_max),
-                          with_thousands(s.plain_folded_total), percent_of(s.plain_surfaces_without_folds, s.surfaces),
-                          with_thousands(s.folded_total), percent_of(s.surfaces_certified, s.surfaces),
-                          s.area_mean_of_means_percent, s.area_max_of_means_percent, s.angle_mean_of_rms_degrees,
-                          s.angle_max_of_rms_degrees, s.octant_rms_pooled_percent);
+      if (s.weights == weights) md += our_row(s);
   }
-  md += "\n";
+  return md + "\n";
+}
+
+std::string footnotes() {
+  std::string md;
   md += "How each column is computed (our reading of the paper, whose Table 1 gives no formulas; its rows are "
         "copied verbatim, its 77 surfaces had 3,000–6,000 triangles each):\n\n";
   md += "- <sup>a</sup> **Plain algorithm**: `plain_algorithm_certificate` of each report, i.e. the paper's "
@@ -213,35 +223,37 @@ std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const
         "12.5) over all 8 × surfaces octants pooled (\"most octants have area 12.5 ± 5%\").\n";
   md += "- Distortion columns describe the final map; where repair changed nothing they are those of the plain "
         "algorithm's map.\n\n";
+  return md;
+}
 
-  md += "## Details\n\n";
+std::string details_section(const std::vector<ProtocolSummary>& summaries) {
+  std::string md = "## Details\n\n";
   md += "| Protocol | Triangles (total) | Plain: folded / surfaces with folds / collapsed / certified | "
         "Final: folded / collapsed / certified | Area: mean of per-surface max (max triangle) | "
         "Angle: mean of per-surface mean (max corner) | Octants: mean per-surface RMS (min–max octant) |\n";
   md += "|---|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& s : summaries)
-    md += fmt::format("| {} | {} | {} / {} / {} / {} of {} | {} / {} / {} of {} | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) | "
-                      "{:.1f}% ({:.1f}–{:.1f}%) |\n",
-                      protocol_title(s.weights), with_thousands(s.triangles_total), with_thousands(s.plain_folded_total),
-                      s.surfaces - s.plain_surfaces_without_folds, with_thousands(s.plain_collapsed_total),
-                      s.plain_surfaces_certified, s.surfaces, with_thousands(s.folded_total), with_thousands(s.collapsed_total),
-                      s.surfaces_certified, s.surfaces, s.area_mean_of_maxima_percent, s.area_max_percent,
-                      s.angle_mean_of_means_degrees, s.angle_max_degrees, s.octant_rms_mean_percent,
-                      s.octant_min_percent, s.octant_max_percent);
-  md += "\n";
+    md += fmt::format("| {} | {} | {} / {} / {} / {} of {} | {} / {} / {} of {} | {:.0f}% ({:.0f}%) | {:.1f}° "
+                      "({:.1f}°) | {:.1f}% ({:.1f}–{:.1f}%) |\n",
+                      protocol_title(s.weights), with_thousands(s.triangles_total),
+                      with_thousands(s.plain_folded_total), s.surfaces - s.plain_surfaces_without_folds,
+                      with_thousands(s.plain_collapsed_total), s.plain_surfaces_certified, s.surfaces,
+                      with_thousands(s.folded_total), with_thousands(s.collapsed_total), s.surfaces_certified,
+                      s.surfaces, s.area_mean_of_maxima_percent, s.area_max_percent, s.angle_mean_of_means_degrees,
+                      s.angle_max_degrees, s.octant_rms_mean_percent, s.octant_min_percent, s.octant_max_percent);
+  return md + "\n";
+}
 
-  if (!context.figure_notes.empty()) {
-    md += "## Figure 4\n\n";
-    for (const auto& note : context.figure_notes) md += "- " + note + "\n";
-    md += "\n";
-  }
-  if (!context.warnings.empty()) {
-    md += "## Warnings\n\n";
-    for (const auto& w : context.warnings) md += "- " + w + "\n";
-    md += "\n";
-  }
+// A section of bullets, or nothing without any.
+std::string bullets_section(const std::string& title, const std::vector<std::string>& bullets) {
+  if (bullets.empty()) return {};
+  std::string md = "## " + title + "\n\n";
+  for (const auto& b : bullets) md += "- " + b + "\n";
+  return md + "\n";
+}
 
-  md += "## Runs\n\n";
+std::string runs_section(const std::vector<ReportSummary>& reports, const std::string& runs_dir) {
+  std::string md = "## Runs\n\n";
   md += "| Report | Input | Weights | Repair | Triangles | Plain folded | Plain collapsed | Folded | Collapsed | "
         "Certified | Area mean (max) | Angle RMS (max) | Octant RMS |\n";
   md += "|---|---|---|---|--:|--:|--:|--:|--:|---|--:|--:|--:|\n";
@@ -251,14 +263,37 @@ std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const
     return sorted_key(a->weights) < sorted_key(b->weights);
   });
   for (const ReportSummary* r : sorted) {
-    const fs::path relative = r->source.lexically_relative(context.runs_dir);
-    md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) | {:.1f}% |\n",
+    const fs::path relative = r->source.lexically_relative(runs_dir);
+    const DistortionMetrics& d = r->distortion;
+    md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) "
+                      "| {:.1f}% |\n",
                       (relative.empty() ? r->source : relative).string(), fs::path(r->input).filename().string(),
                       r->weights, r->repair ? "yes" : "no", with_thousands(r->triangles), r->plain_certificate.folded,
-                      r->plain_certificate.collapsed, r->certificate.folded, r->certificate.collapsed, r->certificate.certified ? "yes" : "**no**",
-                      r->distortion.area_distortion_mean_percent, r->distortion.area_distortion_max_percent, r->distortion.angle_distortion_rms_degrees,
-                      r->distortion.angle_distortion_max_degrees, r->distortion.octant_rms_deviation_percent);
+                      r->plain_certificate.collapsed, r->certificate.folded, r->certificate.collapsed,
+                      r->certificate.certified ? "yes" : "**no**", d.area_distortion_mean_percent,
+                      d.area_distortion_max_percent, d.angle_distortion_rms_degrees, d.angle_distortion_max_degrees,
+                      d.octant_rms_deviation_percent);
   }
+  return md;
+}
+
+}  // namespace
+
+std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const std::vector<ReportSummary>& reports,
+                            const Table1Context& context) {
+  std::string md = "# Table 1 and Figure 4 (Rahi & Sharp), reproduced by spheremap\n\n";
+  md += fmt::format("Runs: every `report.json` under `{}` ({} found), grouped by `options.weights`{}. "
+                    "Written by `spheremap table`.\n\n",
+                    context.runs_dir, context.reports_found,
+                    context.error_runs == 0 ? std::string()
+                                            : fmt::format("; {} failed run(s) (`error.json`, no map) not counted",
+                                                          context.error_runs));
+  md += table1_section(summaries);
+  md += footnotes();
+  md += details_section(summaries);
+  md += bullets_section("Figure 4", context.figure_notes);
+  md += bullets_section("Warnings", context.warnings);
+  md += runs_section(reports, context.runs_dir);
   return md;
 }
 

@@ -43,6 +43,21 @@ TEST_F(Cli, HelpListsTheOptions) {
     EXPECT_NE(map.output.find(option), std::string::npos) << option;
 }
 
+// map and batch share their map options (registered once): the same options, the same words.
+TEST_F(Cli, MapAndBatchShareTheMapOptions) {
+  const auto map = run_cli("map --help").output;
+  const auto batch = run_cli("batch --help").output;
+  auto line_of = [](const std::string& help, const std::string& option) -> std::string {
+    const auto start = help.find("  " + option + " ");
+    if (start == std::string::npos) return "missing " + option;
+    return help.substr(start, help.find('\n', start) - start);
+  };
+  for (const char* option : {"--solver", "--component", "--weld-tolerance", "--collapse-floor", "--ascii",
+                             "--equalizing-rounds", "--no-repair", "--probe", "--grid", "--preset", "--mesh-edge",
+                             "--keep-topology"})
+    EXPECT_EQ(line_of(map, option), line_of(batch, option)) << option;
+}
+
 TEST_F(Cli, MapsAMeshAndWritesThreeFilesIdenticallyTwice) {
   const auto input = write_obj(folder_ / "ico.obj", make_icosphere(2));
   const auto first = run_cli("map " + input + " -o " + (folder_ / "a").string());
