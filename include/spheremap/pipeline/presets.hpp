@@ -16,7 +16,7 @@ enum class Preset {
   /// as it is (no simplification).
   kPaper,
   /// A quick look: a 1 Å grid (areas about 1-1.5% below MSMS's), about 2 Å edges on the mapped mesh and
-  /// at most 4 equalizing rounds (a certified map in about a second for most proteins; BENCHMARKS.md).
+  /// at most 4 equalizing rounds (what that costs and gives: BENCHMARKS.md).
   kFast,
 };
 

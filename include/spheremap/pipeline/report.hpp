@@ -18,7 +18,7 @@
 
 namespace spheremap {
 
-/// The report as JSON (every figure defined in the README's report section). Deterministic but for
+/// The report as JSON (every figure defined in docs/report.md). Deterministic but for
 /// `timings_seconds`. Precondition: `result` and `options` are those of one run_map_job*.
 /// Does not throw (but std::bad_alloc).
 nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& options);

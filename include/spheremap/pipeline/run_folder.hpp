@@ -32,7 +32,8 @@ enum class RunStatus {
   kNotCertified,  // report.json, not certified (exit code 3)
   kError,         // error.json: refused, unreadable or internal error (its exit code: 1, 2 or 4)
 };
-const char* to_string(RunStatus status);  // "pending", "ok", "not-certified", "error"
+/// "pending", "ok", "not-certified", "error" (the summary's `status`). Does not throw.
+const char* to_string(RunStatus status);
 
 /// Files a run folder may hold besides the outputs of write_map_outputs. `error.json` is
 /// {"status": "error", "exit_code", "message", "input"}; `resources.json` ({"peak_rss_mb": ...}) is

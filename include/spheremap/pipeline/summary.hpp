@@ -14,8 +14,8 @@
 
 namespace spheremap {
 
-/// The columns of summary.csv (and the keys of each summary.jsonl line), in order. See the README
-/// ("Batch runs") for their meaning.
+/// The columns of summary.csv (and the keys of each summary.jsonl line), in order (their meaning:
+/// docs/batch.md). Does not throw (but std::bad_alloc).
 const std::vector<std::string>& summary_columns();
 
 /// One row: an object with exactly summary_columns() as keys (null where not applicable), built from
@@ -32,8 +32,10 @@ std::vector<nlohmann::ordered_json> build_summary(const std::filesystem::path& r
 /// summary.csv text: a header line, then one line per row; RFC 4180 quoting (a field holding a comma,
 /// a double quote, a line break or leading/trailing spaces is quoted, quotes doubled), LF line ends,
 /// UTF-8; numbers as in JSON (shortest text that reads back the same double), null as an empty field.
+/// Columns missing from a row are empty. Does not throw (but std::bad_alloc).
 std::string summary_csv(const std::vector<nlohmann::ordered_json>& rows);
-/// summary.jsonl text: one JSON object per line (the same keys and values as the CSV).
+/// summary.jsonl text: one JSON object per line (the same keys and values as the CSV); invalid UTF-8
+/// replaced. Does not throw (but std::bad_alloc).
 std::string summary_jsonl(const std::vector<nlohmann::ordered_json>& rows);
 
 /// Builds the summary from the folders and writes summary.csv and summary.jsonl into `root`, each

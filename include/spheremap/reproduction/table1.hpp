@@ -68,9 +68,10 @@ struct PaperRow {
   double angle_mean_degrees = 0, angle_max_degrees = 0;
   double octant_rms_percent = 0;
 };
+/// The paper's two rows (uniform, cotan), copied verbatim. Does not throw.
 const std::vector<PaperRow>& paper_table1();
 
-/// 12345 -> "12,345" (the paper's style for counts).
+/// 12345 -> "12,345" (the paper's style for counts). Does not throw (but std::bad_alloc).
 std::string with_thousands(std::int64_t n);
 
 /// What Table 1's markdown says besides the protocol summaries.
