@@ -12,6 +12,7 @@
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/shapes.hpp"
 #include "spheremap/sphere/map.hpp"
+#include "spheremap/sphere/poles.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "spheremap/topology/prepare.hpp"
 
@@ -41,8 +42,8 @@ void run(benchmark::State& state, spheremap::Solver solver) {
   for (auto _ : state) {
     const auto map = spheremap::map_to_sphere(mesh, options);
     certified = certified && map.certificate.certified();
-    converged = converged && map.gauss_seidel_converged;
-    sweeps = map.gauss_seidel_sweeps;
+    converged = converged && map.diagnostics.solve.gauss_seidel_converged;
+    sweeps = map.diagnostics.solve.gauss_seidel_sweeps;
     benchmark::DoNotOptimize(map.sphere.data());
   }
   state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
@@ -84,8 +85,8 @@ void BM_MapMolecular(benchmark::State& state) {
   for (auto _ : state) map = spheremap::map_to_sphere(*mesh);
   state.counters["vertices"] = static_cast<double>(mesh->vertex_count());
   state.counters["certified"] = map.certificate.certified() ? 1 : 0;
-  state.counters["rounds"] = map.reweighting_rounds;
-  state.SetLabel(std::string(kStructures[state.range(0)]) + " " + map.elimination_order);
+  state.counters["rounds"] = map.diagnostics.repair.reweighting_rounds;
+  state.SetLabel(std::string(kStructures[state.range(0)]) + " " + to_string(map.diagnostics.solve.elimination_order));
 }
 
 // One numeric factorization of the uniform-weight system of a molecular surface (poles: the farthest
@@ -118,7 +119,7 @@ void BM_Factorize(benchmark::State& state) {
   state.counters["vertices"] = n;
   state.counters["flops"] = factor.flops();
   state.counters["order_seconds"] = order_seconds;
-  state.SetLabel(std::string(kStructures[state.range(0)]) + " " + order.method);
+  state.SetLabel(std::string(kStructures[state.range(0)]) + " " + spheremap::to_string(order.method));
 }
 
 BENCHMARK(BM_MapMolecular)->Args({0, 50})->Args({1, 50})->Args({2, 100})->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();

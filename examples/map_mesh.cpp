@@ -4,6 +4,7 @@
 // or against an installed spheremap with find_package (examples/CMakeLists.txt).
 #include <cstdio>
 
+#include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/ply.hpp"
@@ -28,8 +29,8 @@ int main(int argc, char** argv) {
 
     spheremap::Mesh sphere = prepared.mesh;
     sphere.positions = map.sphere;
-    sphere.real_attributes["theta"] = map.theta;
-    sphere.real_attributes["phi"] = map.phi;
+    sphere.real_attributes[spheremap::attributes::kTheta] = map.theta;
+    sphere.real_attributes[spheremap::attributes::kPhi] = map.phi;
     spheremap::write_ply(argv[2], sphere);
 
     std::printf("%s: %s, %lld folded, %lld collapsed, angle distortion %.1f degrees (mean)\n", argv[1],

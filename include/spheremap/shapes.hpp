@@ -32,7 +32,4 @@ Mesh random_edge_flips(const Mesh& mesh, double probability, std::uint32_t seed)
 /// n x n squares per face, split along the same diagonal (symmetric).
 Mesh make_subdivided_cube(int n);
 
-/// Loop-free 1-to-4 midpoint subdivision (positions not smoothed), `levels` times.
-Mesh subdivide_midpoint(const Mesh& mesh, int levels);
-
 }  // namespace spheremap

@@ -1,3 +1,5 @@
+#include "spheremap/molecule/radii.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -8,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
-#include "spheremap/molecule/structure.hpp"
 
 namespace spheremap {
 

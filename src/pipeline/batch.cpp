@@ -18,6 +18,7 @@
 #include "batch_manifest.hpp"
 #include "batch_worker.hpp"
 #include "detail.hpp"
+#include "../util/stage_timer.hpp"
 
 namespace spheremap {
 namespace {
@@ -167,15 +168,15 @@ void count_outcome(const BatchInputOutcome& outcome, BatchProgress& progress) {
 // pool, the summary rewritten at most every 30 s when something finished.
 void supervise(WorkerPool& pool, const fs::path& root, const std::vector<BatchInput>& inputs,
                const std::vector<Weights>& weights, const BatchCallbacks& callbacks, BatchProgress& progress,
-               std::chrono::steady_clock::time_point started) {
-  auto last_summary = std::chrono::steady_clock::now();
+               const detail::StageTimer& started) {
+  detail::StageTimer since_summary("batch summary");
   bool finished_since_summary = false;
   const auto tick = std::chrono::duration<double>(std::max(0.01, callbacks.tick_seconds));
   if (callbacks.on_tick) callbacks.on_tick(progress);
   for (;;) {
     bool all_done = false;
     const auto ready = pool.wait(tick, progress.running, all_done);
-    progress.elapsed_seconds = seconds_since(started);
+    progress.elapsed_seconds = started.seconds();
     for (const auto& outcome : ready) {
       count_outcome(outcome, progress);
       finished_since_summary = true;
@@ -187,9 +188,9 @@ void supervise(WorkerPool& pool, const fs::path& root, const std::vector<BatchIn
     }
     if (all_done) break;
     if (callbacks.on_tick) callbacks.on_tick(progress);
-    if (finished_since_summary && seconds_since(last_summary) >= 30) {
+    if (finished_since_summary && since_summary.seconds() >= 30) {
       capture([&] { write_batch_summary(root, inputs, weights); });
-      last_summary = std::chrono::steady_clock::now();
+      since_summary.lap("summary");
       finished_since_summary = false;
     }
   }
@@ -204,7 +205,7 @@ BatchResult run_batch(const fs::path& root, const std::vector<BatchInput>& input
   prepare_root(root, inputs, options);
 
   // From here on the folders say what is to do: the inputs with a pending run.
-  const auto started = std::chrono::steady_clock::now();
+  const detail::StageTimer started("batch");
   BatchResult result;
   BatchProgress& progress = result.progress;
   progress.inputs = inputs.size();
@@ -223,7 +224,7 @@ BatchResult run_batch(const fs::path& root, const std::vector<BatchInput>& input
     stopping = pool.stopping();
   }
   progress.running = 0;
-  progress.elapsed_seconds = seconds_since(started);
+  progress.elapsed_seconds = started.seconds();
 
   result.rows = write_batch_summary(root, inputs, options.weights);
   result.exit_code = batch_exit_code(result.rows);

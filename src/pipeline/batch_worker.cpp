@@ -8,12 +8,12 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstring>
 
 #include "detail.hpp"
+#include "../util/stage_timer.hpp"
 
 namespace spheremap::pipeline_detail {
 namespace {
@@ -116,7 +116,7 @@ BatchInputOutcome run_batch_input(const fs::path& root, const BatchInput& input,
   const InputRuns runs{root, input, options.weights};
   BatchInputOutcome outcome;
   outcome.index = index;
-  const auto start = std::chrono::steady_clock::now();
+  const detail::StageTimer timer("batch input");
   std::vector<std::size_t> pending;
   for (std::size_t k = 0; k < options.weights.size(); ++k)
     if (run_status(runs.folder(k)) == RunStatus::kPending) pending.push_back(k);
@@ -130,7 +130,7 @@ BatchInputOutcome run_batch_input(const fs::path& root, const BatchInput& input,
       outcome.message = state.message;
     }
   }
-  outcome.seconds = seconds_since(start);
+  outcome.seconds = timer.seconds();
   return outcome;
 }
 

@@ -1,9 +1,8 @@
-// Private to src/pipeline: the small helpers its files share (text, files, JSON text, wall clock).
+// Private to src/pipeline: the small helpers its files share (text, files, JSON text).
 #pragma once
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -16,10 +15,6 @@ namespace spheremap::pipeline_detail {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
-
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 inline std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });

@@ -2,19 +2,20 @@
 #include "spheremap/pipeline/map_job.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "detail.hpp"
+#include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/surface/provenance.hpp"
+#include "../util/stage_timer.hpp"
 
 namespace spheremap {
 namespace {
@@ -47,9 +48,9 @@ MapOptions map_options_for(const PreparedMesh& prepared, const MapJobOptions& op
 // The part of a job after preparation: the map and its measurements.
 void map_and_measure(MapJobResult& result, const MapJobOptions& options, const std::string& name) {
   result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, name));
-  const auto metrics_start = std::chrono::steady_clock::now();
+  detail::StageTimer timer("map job");
   result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
-  result.metrics_seconds = seconds_since(metrics_start);
+  result.metrics_seconds = timer.lap("metrics");
 }
 
 // A structure file to its analysed molecular surface; fills the structure parts of `result`.
@@ -57,19 +58,18 @@ void map_and_measure(MapJobResult& result, const MapJobOptions& options, const s
 std::string load_molecular_surface(const std::filesystem::path& input, const MapJobOptions& options,
                                    MapJobResult& result, MolecularSurface& surface) {
   result.input = input;
-  const auto start = std::chrono::steady_clock::now();
+  detail::StageTimer timer("map job");
   const Molecule molecule = read_structure(input, options.structure);
-  result.read_seconds = seconds_since(start);
+  result.read_seconds = timer.lap("read");
   result.from_structure = true;
   result.atoms = static_cast<std::int64_t>(molecule.atoms.size());
   result.structure = molecule.report;
-  const auto surface_start = std::chrono::steady_clock::now();
   try {
     surface = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &result.topology, false);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", input.string(), e.what()));
   }
-  result.surface_seconds = seconds_since(surface_start);
+  result.surface_seconds = timer.lap("surface");
   result.surface_timings = surface.timings;
   result.components = surface.reports;
   if (surface.components.empty())
@@ -98,7 +98,7 @@ std::string prepare_surface_component(MolecularSurface& surface, std::size_t cho
   named.prepare.component = ComponentChoice::refuse();
   // add_atom_provenance below writes these again from `atomid`: meanwhile they would be extracted and
   // carried through the simplification for nothing.
-  for (const char* derived : {"vertex_atom_serial", "vertex_residue_number", "vertex_model"})
+  for (const char* derived : {attributes::kAtomSerial, attributes::kResidueNumber, attributes::kModel})
     surface.mesh.integer_attributes.erase(derived);
   Mesh component;
   if (surface.components.size() == 1) {
@@ -110,16 +110,16 @@ std::string prepare_surface_component(MolecularSurface& surface, std::size_t cho
     component = extract_component(surface.mesh, surface.components[chosen]);
   }
   if (options.simplify.target_edge_length > 0) {
-    const auto simplify_start = std::chrono::steady_clock::now();
+    detail::StageTimer timer("map job");
     component = simplify_surface(std::move(component), options.simplify, &result.simplification);
     result.simplified = true;
-    result.simplify_seconds = seconds_since(simplify_start);
+    result.simplify_seconds = timer.lap("simplify");
   }
   // The text provenance of the vertices that are mapped (load_molecular_surface leaves it out).
   add_atom_provenance(component, surface.atoms);
-  const auto prepare_start = std::chrono::steady_clock::now();
+  detail::StageTimer timer("map job");
   result.prepared = prepare_mesh(component, named.prepare);
-  result.prepare_seconds = seconds_since(prepare_start);
+  result.prepare_seconds = timer.lap("prepare");
   return named.prepare.source_name;
 }
 
@@ -132,7 +132,7 @@ void simplify_prepared_mesh(MapJobResult& result, const MapJobOptions& options, 
     const auto poles = *map_options_for(result.prepared, options, name).poles;
     simplify.kept_vertices.insert(simplify.kept_vertices.end(), {poles.first, poles.second});
   }
-  const auto start = std::chrono::steady_clock::now();
+  detail::StageTimer timer("map job");
   auto& prepared = result.prepared;
   prepared.mesh = simplify_surface(std::move(prepared.mesh), simplify, &result.simplification);
   const auto& kept = result.simplification.kept_vertex;
@@ -145,7 +145,7 @@ void simplify_prepared_mesh(MapJobResult& result, const MapJobOptions& options, 
   for (auto& v : prepared.report.vertex_of_input)
     if (v >= 0) v = new_index[static_cast<std::size_t>(v)];
   result.simplified = true;
-  result.simplify_seconds = seconds_since(start);
+  result.simplify_seconds = timer.lap("simplify");
 }
 
 // Everything before the map: read (and for structures, the surface and its repair), then prepare.
@@ -166,14 +166,13 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
     }
     return prepare_surface_component(surface, chosen, name, options, result, true);
   }
-  const auto start = std::chrono::steady_clock::now();
+  detail::StageTimer timer("map job");
   const PolygonSoup soup = read_polygon_soup(input);
-  result.read_seconds = seconds_since(start);
+  result.read_seconds = timer.lap("read");
   MapJobOptions named = options;
   if (named.prepare.source_name == "mesh") named.prepare.source_name = input.string();
-  const auto prepare_start = std::chrono::steady_clock::now();
   result.prepared = prepare_mesh(soup, named.prepare);
-  result.prepare_seconds = seconds_since(prepare_start);
+  result.prepare_seconds = timer.lap("prepare");
   if (options.simplify_mesh_files) simplify_prepared_mesh(result, options, named.prepare.source_name);
   return named.prepare.source_name;
 }
@@ -227,9 +226,9 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
   named.prepare.source_name = name;
   MapJobResult result;
   result.input = name;
-  const auto prepare_start = std::chrono::steady_clock::now();
+  detail::StageTimer timer("map job");
   result.prepared = prepare_mesh(mesh, named.prepare);
-  result.prepare_seconds = seconds_since(prepare_start);
+  result.prepare_seconds = timer.lap("prepare");
   if (options.simplify_mesh_files) simplify_prepared_mesh(result, named, name);
   map_and_measure(result, options, name);
   return result;
@@ -274,17 +273,20 @@ std::string summary_text(const MapJobResult& result) {
   const auto& m = result.metrics;
   double total_seconds = result.read_seconds + result.surface_seconds + result.simplify_seconds +
                          result.prepare_seconds + result.metrics_seconds;
-  for (const auto& t : map.timings) total_seconds += t.seconds;
+  for (const auto& t : map.diagnostics.timings) total_seconds += t.seconds;
   std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
                                  result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
   if (result.from_structure) text += structure_text(result);
   if (result.simplified) text += simplification_text(result.simplification);
-  text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n", map.method,
-                      map.north, map.south, map.pole_graph_distance, map.split_edges.size(), map.solver_used);
+  const auto& repair = map.diagnostics.repair;
+  text += fmt::format("  map: {}, poles {} and {} (graph distance {}), {} split edges, solver {}\n",
+                      to_string(map.diagnostics.construction.method), map.poles.north, map.poles.south,
+                      map.poles.graph_distance, map.diagnostics.construction.split_edges.size(),
+                      to_string(map.diagnostics.solve.solver));
   text += fmt::format("  plain algorithm: {} folded, {} collapsed; repair: {} re-weighting rounds, {} untangling "
                       "moves\n",
-                      map.plain_certificate.folded, map.plain_certificate.collapsed, map.reweighting_rounds,
-                      map.untangling_moves);
+                      repair.plain_certificate.folded, repair.plain_certificate.collapsed, repair.reweighting_rounds,
+                      repair.untangling_moves);
   text += fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
                       c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage,
                       c.decided_exactly);
@@ -303,9 +305,9 @@ void write_map_outputs(const std::filesystem::path& directory, const MapJobResul
   if (error)
     throw InputError(fmt::format("{}: cannot create the output folder: {}", directory.string(), error.message()));
   Mesh surface = result.prepared.mesh;
-  surface.real_attributes["theta"] = result.map.theta;
-  surface.real_attributes["phi"] = result.map.phi;
-  surface.integer_attributes["input_vertex"] = result.prepared.report.original_vertex;
+  surface.real_attributes[attributes::kTheta] = result.map.theta;
+  surface.real_attributes[attributes::kPhi] = result.map.phi;
+  surface.integer_attributes[attributes::kInputVertex] = result.prepared.report.original_vertex;
   Mesh sphere = surface;
   sphere.positions = result.map.sphere;
   const PlyWriteOptions ply{options.ascii};

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -12,13 +11,14 @@
 #include <fmt/format.h>
 
 #include "detail.hpp"
+#include "spheremap/attributes.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/handles.hpp"
+#include "spheremap/surface/nearest_atoms.hpp"
 #include "spheremap/surface/provenance.hpp"
+#include "../util/stage_timer.hpp"
 
 namespace spheremap {
-
-using pipeline_detail::seconds_since;
 
 const char* to_string(SurfaceComponentKind kind) {
   constexpr const char* kNames[] = {"outer", "piece", "cavity"};  // in the order of the enum
@@ -109,7 +109,7 @@ HandleChangeReport describe_change(const Grid3<T>& field, bool filled, const std
 std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const std::vector<MeshComponent>& components,
                                                         const std::vector<Atom>& atoms) {
   constexpr std::size_t kListedResidues = 200;
-  const auto& atom_of = mesh.integer_attributes.at("atomid");
+  const auto& atom_of = mesh.integer_attributes.at(attributes::kAtomId);
   std::vector<SurfaceComponentReport> reports;
   for (std::size_t c = 0; c < components.size(); ++c) {
     const auto& component = components[c];
@@ -144,11 +144,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
   MolecularSurface result;
   TopologyRepair local;
   TopologyRepair& report = repair ? *repair : local;
-  auto stage_start = std::chrono::steady_clock::now();
-  auto lap = [&](const char* stage) {
-    result.timings.push_back({stage, seconds_since(stage_start)});
-    stage_start = std::chrono::steady_clock::now();
-  };
+  detail::StageTimer timer("surface", &result.timings);
   Mesh mesh;
   // The components of the final contour, when a step computed them already (adding provenance changes
   // neither its triangles nor its positions).
@@ -159,7 +155,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     SurfaceOptions budgeted = surface;
     if (!keep_topology) budgeted.extra_bytes_per_sample += 3;
     Grid3<float> field = solvent_excluded_field_float(atoms, budgeted);
-    lap("field");
+    timer.lap("field");
     mesh = contour_isosurface(field, 0.0, surface.threads, surface.contour_minimum_fraction);
     {
       // Scoped, and kept only when no repair follows: its triangle lists (one index per triangle) would
@@ -169,7 +165,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
       report.area_before = before.empty() ? 0 : before.front().area;
       if (keep_topology || report.genus_before == 0) final_components = std::move(before);
     }
-    lap("contour");
+    timer.lap("contour");
     if (!keep_topology && report.genus_before != 0) {
       mesh = Mesh{};  // the repair needs the memory; its last genus check contours the repaired field
       GenusRepair fix =
@@ -188,19 +184,19 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
       if (!fix.global.removed_samples.empty())
         report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples,
                                                  fix.global.area_change, report.genus_before, atoms, reach));
-      lap("repair");
+      timer.lap("repair");
     }
   }
   add_nearest_atoms(mesh, atoms, surface);
   if (full_provenance) add_atom_provenance(mesh, atoms);
   result.atoms = atoms;
-  lap("provenance");
+  timer.lap("provenance");
   result.mesh = std::move(mesh);
   result.components = final_components ? std::move(*final_components) : mesh_components(result.mesh);
   result.reports = describe_components(result.mesh, result.components, atoms);
   report.area_after = result.components.empty() ? 0 : result.components.front().area;
   if (report.method == "none") report.area_before = report.area_after;
-  lap("components");
+  timer.lap("components");
   return result;
 }
 

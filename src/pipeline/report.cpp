@@ -95,7 +95,7 @@ nlohmann::json timings_json(const MapJobResult& result) {
   }
   if (result.simplified) timings["simplify"] = result.simplify_seconds;
   timings["prepare"] = result.prepare_seconds;
-  for (const auto& t : result.map.timings) timings[t.stage] = t.seconds;
+  for (const auto& t : result.map.diagnostics.timings) timings[t.stage] = t.seconds;
   timings["metrics"] = result.metrics_seconds;
   return timings;
 }
@@ -107,7 +107,7 @@ nlohmann::json options_json(const MapJobResult& result, const MapJobOptions& opt
           {"collapse_floor", options.map.collapse_floor},
           {"max_equalizing_rounds", options.map.max_equalizing_rounds},
           {"weld_tolerance", options.prepare.weld_tolerance},
-          {"poles_given", result.map.poles_from_options}};
+          {"poles_given", result.map.poles.from_options}};
 }
 
 nlohmann::json topology_repair_json(const TopologyRepair& repair) {
@@ -161,31 +161,35 @@ nlohmann::json mesh_json(const PreparedMesh& prepared) {
 }
 
 nlohmann::json map_json(const SphereMap& map) {
+  const auto& construction = map.diagnostics.construction;
+  const auto& solve = map.diagnostics.solve;
+  const auto& repair = map.diagnostics.repair;
   nlohmann::json splits = nlohmann::json::array();
-  for (const auto& s : map.split_edges) splits.push_back({{"a", s.a}, {"b", s.b}, {"ring", std::string(1, s.pole)}});
+  for (const auto& s : construction.split_edges)
+    splits.push_back({{"a", s.a}, {"b", s.b}, {"ring", std::string(1, s.pole)}});
   const auto& r = map.superposition.rotation;
-  return {{"method", map.method},
-          {"refinement_levels", map.refinement_levels},
-          {"north_pole", map.north},
-          {"south_pole", map.south},
-          {"pole_graph_distance", map.pole_graph_distance},
-          {"theta0", map.theta0},
-          {"mercator_c", map.mercator_c},
-          {"ring_z", map.ring_z},
-          {"north_ring_size", map.north_ring_size},
-          {"south_ring_size", map.south_ring_size},
+  return {{"method", to_string(construction.method)},
+          {"refinement_levels", construction.refinement_levels},
+          {"north_pole", map.poles.north},
+          {"south_pole", map.poles.south},
+          {"pole_graph_distance", map.poles.graph_distance},
+          {"theta0", construction.theta0},
+          {"mercator_c", construction.mercator_c},
+          {"ring_z", construction.ring_z},
+          {"north_ring_size", construction.north_ring_size},
+          {"south_ring_size", construction.south_ring_size},
           {"split_edges", splits},
-          {"meridian_length", map.meridian.size()},
-          {"meridian_method", map.meridian_method},
-          {"meridian_round", map.meridian_round},
-          {"solver", map.solver_used},
-          {"elimination_order", map.elimination_order},
-          {"gauss_seidel_sweeps", map.gauss_seidel_sweeps},
-          {"gauss_seidel_converged", map.gauss_seidel_converged},
-          {"weight_fallback_rows", map.weight_fallback_rows},
-          {"reweighting_rounds", map.reweighting_rounds},
-          {"equalizing_rounds", map.equalizing_rounds},
-          {"untangling_moves", map.untangling_moves},
+          {"meridian_length", construction.meridian.size()},
+          {"meridian_method", to_string(construction.meridian_method)},
+          {"meridian_round", construction.meridian_round},
+          {"solver", to_string(solve.solver)},
+          {"elimination_order", to_string(solve.elimination_order)},
+          {"gauss_seidel_sweeps", solve.gauss_seidel_sweeps},
+          {"gauss_seidel_converged", solve.gauss_seidel_converged},
+          {"weight_fallback_rows", solve.weight_fallback_rows},
+          {"reweighting_rounds", repair.reweighting_rounds},
+          {"equalizing_rounds", repair.equalizing_rounds},
+          {"untangling_moves", repair.untangling_moves},
           {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
           {"superposition_rmsd", map.superposition.rmsd},
           {"superposition_scale", map.superposition.scale}};
@@ -216,7 +220,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
       {"mesh", mesh_json(result.prepared)},
       {"map", map_json(result.map)},
       {"certificate", certificate_json(result.map.certificate)},
-      {"plain_algorithm_certificate", certificate_json(result.map.plain_certificate)},
+      {"plain_algorithm_certificate", certificate_json(result.map.diagnostics.repair.plain_certificate)},
       {"distortion", distortion_json(result.metrics)},
       {"timings_seconds", timings_json(result)},
   };

@@ -11,19 +11,13 @@
 #include <vector>
 
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/topology/connectivity.hpp"
+#include "spheremap/topology/subdivide.hpp"
 
 namespace spheremap {
 namespace {
 
 constexpr std::int64_t kMaxVertexCount = std::numeric_limits<std::int32_t>::max();
-
-// Half-edge h = 3 * triangle + corner runs from triangles[t][corner] to triangles[t][corner + 1].
-std::size_t next_half_edge(std::size_t h) { return h - h % 3 + (h + 1) % 3; }
-std::size_t previous_half_edge(std::size_t h) { return h - h % 3 + (h + 2) % 3; }
-std::int32_t half_edge_origin(const std::vector<Triangle>& triangles, std::size_t h) { return triangles[h / 3][h % 3]; }
-std::int32_t half_edge_target(const std::vector<Triangle>& triangles, std::size_t h) {
-  return triangles[h / 3][(h + 1) % 3];
-}
 
 /// Uniform double in [0, 1) from 53 raw bits of the generator. std::mt19937's raw output is fixed by
 /// the standard, unlike std::uniform_real_distribution, so meshes are identical across standard libraries.
@@ -50,90 +44,6 @@ void require_valid_indices(const Mesh& mesh, const char* function) {
         throw std::invalid_argument(std::string(function) + ": triangle index " + std::to_string(v) + " out of range");
 }
 
-/// Both half-edges of an edge share one edge id; ids are dense and numbered in (lower vertex,
-/// higher vertex) order, so the numbering is deterministic.
-struct EdgeNumbering {
-  std::vector<std::int32_t> edge_of_half_edge;
-  std::vector<std::array<std::int32_t, 2>> edge_endpoints;  // lower vertex first
-};
-
-EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles) {
-  // Bucket every half-edge under its lower endpoint (counting sort), then sort each small bucket by the
-  // higher endpoint: linear overall, and far faster than a hash map of edges for millions of triangles.
-  const std::size_t half_edge_count = 3 * triangles.size();
-  std::vector<std::size_t> bucket_start(vertex_count + 1, 0);
-  for (std::size_t h = 0; h < half_edge_count; ++h) {
-    const auto lower = std::min(half_edge_origin(triangles, h), half_edge_target(triangles, h));
-    ++bucket_start[static_cast<std::size_t>(lower) + 1];
-  }
-  for (std::size_t v = 0; v < vertex_count; ++v) bucket_start[v + 1] += bucket_start[v];
-
-  struct Entry {
-    std::int32_t higher_vertex;
-    std::size_t half_edge;
-  };
-  std::vector<Entry> entries(half_edge_count);
-  {
-    std::vector<std::size_t> fill(bucket_start.begin(), bucket_start.end() - 1);
-    for (std::size_t h = 0; h < half_edge_count; ++h) {
-      const auto a = half_edge_origin(triangles, h), b = half_edge_target(triangles, h);
-      entries[fill[static_cast<std::size_t>(std::min(a, b))]++] = {std::max(a, b), h};
-    }
-  }
-
-  EdgeNumbering numbering;
-  numbering.edge_of_half_edge.resize(half_edge_count);
-  numbering.edge_endpoints.reserve(half_edge_count / 2 + 1);
-  for (std::size_t v = 0; v < vertex_count; ++v) {
-    const auto begin = entries.begin() + static_cast<std::ptrdiff_t>(bucket_start[v]);
-    const auto end = entries.begin() + static_cast<std::ptrdiff_t>(bucket_start[v + 1]);
-    // Ties broken by half-edge index so the numbering never depends on the sort's stability.
-    std::sort(begin, end, [](const Entry& x, const Entry& y) {
-      return x.higher_vertex != y.higher_vertex ? x.higher_vertex < y.higher_vertex : x.half_edge < y.half_edge;
-    });
-    for (auto it = begin; it != end; ++it) {
-      if (it == begin || it->higher_vertex != (it - 1)->higher_vertex) {
-        if (numbering.edge_endpoints.size() >= static_cast<std::size_t>(kMaxVertexCount))
-          throw std::invalid_argument("number_edges: too many edges for 32-bit indices");
-        numbering.edge_endpoints.push_back({static_cast<std::int32_t>(v), it->higher_vertex});
-      }
-      numbering.edge_of_half_edge[it->half_edge] = static_cast<std::int32_t>(numbering.edge_endpoints.size() - 1);
-    }
-  }
-  return numbering;
-}
-
-/// One 1-to-4 split: the midpoint of edge e becomes vertex (old vertex count + e), so midpoints are
-/// shared between the two triangles of an edge. With `project_to_unit_sphere` midpoints are normalized.
-void subdivide_once(std::vector<Vec3>& positions, std::vector<Triangle>& triangles, bool project_to_unit_sphere) {
-  const EdgeNumbering edges = number_edges(positions.size(), triangles);
-  const auto old_vertex_count = static_cast<std::int64_t>(positions.size());
-  if (old_vertex_count + static_cast<std::int64_t>(edges.edge_endpoints.size()) > kMaxVertexCount)
-    throw std::invalid_argument("subdivision would exceed 2^31 - 1 vertices (32-bit triangle indices)");
-
-  positions.reserve(positions.size() + edges.edge_endpoints.size());
-  for (const auto& [a, b] : edges.edge_endpoints) {
-    const Vec3 midpoint = 0.5 * (positions[a] + positions[b]);
-    positions.push_back(project_to_unit_sphere ? normalized(midpoint) : midpoint);
-  }
-
-  std::vector<Triangle> refined;
-  refined.reserve(4 * triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const auto [a, b, c] = triangles[t];
-    const auto midpoint_vertex = [&](std::size_t corner) {
-      return static_cast<std::int32_t>(old_vertex_count + edges.edge_of_half_edge[3 * t + corner]);
-    };
-    const std::int32_t ab = midpoint_vertex(0), bc = midpoint_vertex(1), ca = midpoint_vertex(2);
-    // Same orientation as the parent: three corner triangles and the middle one.
-    refined.push_back({a, ab, ca});
-    refined.push_back({ab, b, bc});
-    refined.push_back({ca, bc, c});
-    refined.push_back({ab, bc, ca});
-  }
-  triangles = std::move(refined);
-}
-
 }  // namespace
 
 Mesh make_icosphere(int levels) {
@@ -150,7 +60,7 @@ Mesh make_icosphere(int levels) {
   const std::size_t final_vertex_count = 10 * (std::size_t{1} << (2 * levels)) + 2;
   mesh.positions.reserve(final_vertex_count);
   // Projecting after every level (not only at the end) keeps the triangles close to equilateral.
-  for (int level = 0; level < levels; ++level) subdivide_once(mesh.positions, mesh.triangles, true);
+  for (int level = 0; level < levels; ++level) subdivide_midpoint_in_place(mesh.positions, mesh.triangles, true);
   return mesh;
 }
 
@@ -430,18 +340,6 @@ Mesh make_subdivided_cube(int n) {
     }
   }
   return mesh;
-}
-
-// Attributes are not carried over: the result has only positions and triangles, since there is no one
-// right way to interpolate integer labels onto midpoints.
-Mesh subdivide_midpoint(const Mesh& mesh, int levels) {
-  if (levels < 0) throw std::invalid_argument("subdivide_midpoint: levels must be >= 0");
-  require_valid_indices(mesh, "subdivide_midpoint");
-  Mesh result;
-  result.positions = mesh.positions;
-  result.triangles = mesh.triangles;
-  for (int level = 0; level < levels; ++level) subdivide_once(result.positions, result.triangles, false);
-  return result;
 }
 
 }  // namespace spheremap

@@ -10,7 +10,7 @@
 
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "../surface/parallel.hpp"
+#include "../util/parallel.hpp"
 
 namespace spheremap {
 namespace {

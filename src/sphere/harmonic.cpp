@@ -74,7 +74,7 @@ SolveStats solve_gauss_seidel(const HarmonicProblem& problem, std::vector<double
   const auto& rings = *problem.rings;
   const auto& w = problem.weights->values;
   const auto n = rings.vertex_count();
-  SolveStats stats{"gauss-seidel", 0, false};
+  SolveStats stats{LinearSolver::kGaussSeidel, 0, false};
   // The paper starts from 0.
   for (std::int32_t v = 0; v < n; ++v)
     if (!problem.fixed[v]) x[v] = 0;
@@ -350,7 +350,7 @@ std::vector<std::int32_t> geometric_order_of(const VertexRings& rings, const std
 
 EliminationOrder geometric_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                              const std::vector<char>& always_fixed) {
-  return {geometric_order_of(rings, positions, always_fixed), "geometric"};
+  return {geometric_order_of(rings, positions, always_fixed), FillReducingOrder::kGeometric};
 }
 
 namespace {
@@ -359,7 +359,7 @@ namespace {
 // upper triangle's pattern (with the diagonal) of a symmetric matrix, column by column.
 template <typename Ordering>
 EliminationOrder cholmod_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
-                                           const std::vector<char>& always_fixed, const char* method, Ordering&& ordering) {
+                                           const std::vector<char>& always_fixed, FillReducingOrder method, Ordering&& ordering) {
   const auto unknowns = number_unknowns(rings.vertex_count(), always_fixed);
   const auto count = static_cast<std::int32_t>(unknowns.vertex.size());
   if (count == 0) return {{}, method};
@@ -395,14 +395,14 @@ EliminationOrder cholmod_elimination_order(const VertexRings& rings, const std::
 
 EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                          const std::vector<char>& always_fixed) {
-  return cholmod_elimination_order(rings, positions, always_fixed, "metis", [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
+  return cholmod_elimination_order(rings, positions, always_fixed, FillReducingOrder::kMetis, [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
     return cholmod_metis(upper, nullptr, 0, /*postorder=*/1, permutation, common);
   });
 }
 
 EliminationOrder amd_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                        const std::vector<char>& always_fixed) {
-  return cholmod_elimination_order(rings, positions, always_fixed, "amd", [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
+  return cholmod_elimination_order(rings, positions, always_fixed, FillReducingOrder::kAmd, [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
     return cholmod_amd(upper, nullptr, 0, permutation, common);
   });
 }
@@ -589,11 +589,11 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
   const auto& unknown_index = numbered.index;
   const auto unknowns = static_cast<std::int32_t>(numbered.vertex.size());
   if (unknowns == 0) {
-    stats.solver = "none";
+    stats.solver = LinearSolver::kNone;
     return stats;
   }
   if (problem.weights->symmetric && solve_cholesky(problem, unknown_index, unknowns, x)) {
-    stats.solver = "cholmod-llt";
+    stats.solver = LinearSolver::kCholmodLlt;
     return stats;
   }
   // Non-symmetric weights (mean-value), or an indefinite matrix (cotangent weights).
@@ -614,7 +614,7 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
   if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU factorization failed (singular system)");
   const Eigen::VectorXd solution = lu.solve(rhs);
   if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU solve failed");
-  stats.solver = "umfpack-lu";
+  stats.solver = LinearSolver::kUmfpackLu;
   for (std::int32_t v = 0; v < n; ++v)
     if (!problem.fixed[v]) x[v] = solution[unknown_index[v]];
   return stats;

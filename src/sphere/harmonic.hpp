@@ -3,7 +3,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <string>
 #include <vector>
 
 #include "spheremap/sphere/map.hpp"
@@ -34,7 +33,7 @@ struct HarmonicProblem {
 };
 
 struct SolveStats {
-  std::string solver;
+  LinearSolver solver = LinearSolver::kNone;
   std::int64_t sweeps = 0;
   bool converged = true;
 };
@@ -47,7 +46,7 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
 /// of a map (z and φ of the plain map, every re-weighting round), whatever else they fix.
 struct EliminationOrder {
   std::vector<std::int32_t> vertices;
-  std::string method;  // "geometric", "amd" or "metis"
+  FillReducingOrder method = FillReducingOrder::kGeometric;
 };
 
 /// Geometric nested dissection: split at the median of the longest bounding-box axis, the vertices of

@@ -7,7 +7,7 @@
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/certify.hpp"
-#include "../surface/parallel.hpp"
+#include "../util/parallel.hpp"
 
 namespace spheremap::detail {
 

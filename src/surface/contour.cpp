@@ -8,7 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "parallel.hpp"
+#include "../util/parallel.hpp"
 #include "spheremap/geometry/vec.hpp"
 
 namespace spheremap {

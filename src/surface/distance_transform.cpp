@@ -1,10 +1,11 @@
+#include "spheremap/surface/distance_transform.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
 
-#include "parallel.hpp"
-#include "spheremap/surface/grid.hpp"
+#include "../util/parallel.hpp"
 
 namespace spheremap {
 namespace {

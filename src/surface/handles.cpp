@@ -15,7 +15,7 @@
 #include <utility>
 
 #include "handles_tuning.hpp"
-#include "parallel.hpp"
+#include "../util/parallel.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/topology/components.hpp"

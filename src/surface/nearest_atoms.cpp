@@ -1,13 +1,14 @@
-// The nearest atom of every surface vertex (add_nearest_atoms, declared in ses.hpp).
+#include "spheremap/surface/nearest_atoms.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
 
 #include "atom_grid.hpp"
-#include "parallel.hpp"
+#include "../util/parallel.hpp"
+#include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/surface/ses.hpp"
 
 namespace spheremap {
 namespace {
@@ -211,10 +212,10 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
       }
     });
   }
-  mesh.integer_attributes["atomid"] = std::move(atom_index);
-  mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
-  mesh.integer_attributes["vertex_residue_number"] = std::move(residue);
-  mesh.integer_attributes["vertex_model"] = std::move(model);
+  mesh.integer_attributes[attributes::kAtomId] = std::move(atom_index);
+  mesh.integer_attributes[attributes::kAtomSerial] = std::move(serial);
+  mesh.integer_attributes[attributes::kResidueNumber] = std::move(residue);
+  mesh.integer_attributes[attributes::kModel] = std::move(model);
 }
 
 }  // namespace spheremap

@@ -6,6 +6,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "spheremap/attributes.hpp"
+
 namespace spheremap {
 namespace {
 
@@ -37,7 +39,7 @@ class TextColumn {
 }  // namespace
 
 void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
-  const auto found = mesh.integer_attributes.find("atomid");
+  const auto found = mesh.integer_attributes.find(attributes::kAtomId);
   if (found == mesh.integer_attributes.end()) throw std::invalid_argument("add_atom_provenance: the mesh has no 'atomid' attribute");
   const auto& atom_of = found->second;
   std::vector<std::int32_t> serial, residue_number, model;
@@ -60,14 +62,14 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
     insertion_code.push(a, [&] { return atom.insertion_code == ' ' ? std::string() : std::string(1, atom.insertion_code); });
     chain.push(a, [&] { return atom.chain; });
   }
-  mesh.integer_attributes["vertex_atom_serial"] = std::move(serial);
-  mesh.integer_attributes["vertex_residue_number"] = std::move(residue_number);
-  mesh.integer_attributes["vertex_model"] = std::move(model);
-  mesh.text_attributes["vertex_atom_name"] = name.take();
-  mesh.text_attributes["vertex_element"] = element.take();
-  mesh.text_attributes["vertex_residue_name"] = residue_name.take();
-  mesh.text_attributes["vertex_insertion_code"] = insertion_code.take();
-  mesh.text_attributes["vertex_chain"] = chain.take();
+  mesh.integer_attributes[attributes::kAtomSerial] = std::move(serial);
+  mesh.integer_attributes[attributes::kResidueNumber] = std::move(residue_number);
+  mesh.integer_attributes[attributes::kModel] = std::move(model);
+  mesh.text_attributes[attributes::kAtomName] = name.take();
+  mesh.text_attributes[attributes::kElement] = element.take();
+  mesh.text_attributes[attributes::kResidueName] = residue_name.take();
+  mesh.text_attributes[attributes::kInsertionCode] = insertion_code.take();
+  mesh.text_attributes[attributes::kChain] = chain.take();
   // Per-atom values the file has (every atom of a PDB or mmCIF file has a B-factor, every atom of a PQR
   // file a charge): written only then, never as made-up zeros.
   auto per_vertex = [&](const char* attribute, std::optional<double> Atom::*value) {
@@ -81,8 +83,8 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
     for (const std::int32_t index : atom_of) values.push_back(*(atoms[static_cast<std::size_t>(index)].*value));
     mesh.real_attributes[attribute] = std::move(values);
   };
-  per_vertex("vertex_b_factor", &Atom::b_factor);
-  per_vertex("vertex_charge", &Atom::charge);
+  per_vertex(attributes::kBFactor, &Atom::b_factor);
+  per_vertex(attributes::kCharge, &Atom::charge);
 }
 
 }  // namespace spheremap

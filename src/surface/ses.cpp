@@ -6,47 +6,21 @@
 #include <limits>
 #include <numbers>
 #include <type_traits>
-#ifdef SPHEREMAP_SURFACE_STAGE_TIMES
-#include <chrono>
-#include <cstdio>
-#include <ctime>
-#endif
 
 #include <fmt/format.h>
 
 #include "atom_grid.hpp"
 #include "circle_cover.hpp"
-#include "parallel.hpp"
+#include "../util/parallel.hpp"
+#include "../util/stage_timer.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/surface/contour.hpp"
+#include "spheremap/surface/distance_transform.hpp"
+#include "spheremap/surface/nearest_atoms.hpp"
 
 namespace spheremap {
 namespace {
-// Wall and CPU time of each step of the field on stderr, for profiling (BENCHMARKS.md, "Where the time
-// goes"): build with -DSPHEREMAP_SURFACE_STAGE_TIMES. Otherwise it does nothing.
-class StageClock {
- public:
-#ifdef SPHEREMAP_SURFACE_STAGE_TIMES
-  void lap(const char* step) {
-    const double wall = wall_seconds(), cpu = cpu_seconds();
-    std::fprintf(stderr, "surface stage %-12s %.3f s wall %.3f s CPU\n", step, wall - wall_, cpu - cpu_);
-    wall_ = wall, cpu_ = cpu;
-  }
-
- private:
-  static double wall_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-  static double cpu_seconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-  }
-  double wall_ = wall_seconds(), cpu_ = cpu_seconds();
-#else
-  void lap(const char*) {}
-#endif
-};
-
 using detail::AtomGrid;
 
 // floor and ceil for |x| < 2^52 without a libm call (no SSE4.1 rounding in a default build).
@@ -286,7 +260,7 @@ using detail::CoverTerm;
 // carve_cavities, everything joined to an outside sample carves).
 template <typename T>
 std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>& atoms, double probe, const Pockets& pockets,
-                                        bool carve_cavities, int threads, StageClock& clock) {
+                                        bool carve_cavities, int threads, detail::StageTimer& clock) {
   const double h = field.spacing;
   const auto [nx, ny, nz] = field.size;
   const auto count = static_cast<std::int32_t>(atoms.size());
@@ -1006,7 +980,7 @@ Grid3<T> excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& op
                                  std::ceil(fitting * 100) / 100));
   }
   const int threads = detail::surface_threads(options.threads);
-  StageClock clock;
+  detail::StageTimer clock("surface");
   detail::reserve_mapped(field.values, static_cast<std::size_t>(field.count()), threads);
   field.values.assign(static_cast<std::size_t>(field.count()), static_cast<T>(kUnreached));
   // Samples outside the SAS (outside every sphere of radius r + probe) are probe centres; only those a
@@ -1077,11 +1051,11 @@ Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptio
   Mesh mesh;
   {
     const Grid3<float> field = solvent_excluded_field_float(atoms, options);
-    StageClock clock;
+    detail::StageTimer clock("surface");
     mesh = contour_isosurface(field, 0.0, options.threads, options.contour_minimum_fraction);
     clock.lap("contour");
   }
-  StageClock clock;
+  detail::StageTimer clock("surface");
   add_nearest_atoms(mesh, atoms, options);
   clock.lap("provenance");
   return mesh;

@@ -1,10 +1,58 @@
 #include "spheremap/topology/connectivity.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
 namespace spheremap {
+
+EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles) {
+  // Bucket every half-edge under its lower endpoint (counting sort), then sort each small bucket by the
+  // higher endpoint: linear overall, and far faster than a hash map of edges for millions of triangles.
+  const std::size_t half_edge_count = 3 * triangles.size();
+  std::vector<std::size_t> bucket_start(vertex_count + 1, 0);
+  for (std::size_t h = 0; h < half_edge_count; ++h) {
+    const auto lower = std::min(half_edge_origin(triangles, h), half_edge_target(triangles, h));
+    ++bucket_start[static_cast<std::size_t>(lower) + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) bucket_start[v + 1] += bucket_start[v];
+
+  struct Entry {
+    std::int32_t higher_vertex;
+    std::size_t half_edge;
+  };
+  std::vector<Entry> entries(half_edge_count);
+  {
+    std::vector<std::size_t> fill(bucket_start.begin(), bucket_start.end() - 1);
+    for (std::size_t h = 0; h < half_edge_count; ++h) {
+      const auto a = half_edge_origin(triangles, h), b = half_edge_target(triangles, h);
+      entries[fill[static_cast<std::size_t>(std::min(a, b))]++] = {std::max(a, b), h};
+    }
+  }
+
+  EdgeNumbering numbering;
+  numbering.edge_of_half_edge.resize(half_edge_count);
+  numbering.edge_endpoints.reserve(half_edge_count / 2 + 1);
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const auto begin = entries.begin() + static_cast<std::ptrdiff_t>(bucket_start[v]);
+    const auto end = entries.begin() + static_cast<std::ptrdiff_t>(bucket_start[v + 1]);
+    // Ties broken by half-edge index so the numbering never depends on the sort's stability.
+    std::sort(begin, end, [](const Entry& x, const Entry& y) {
+      return x.higher_vertex != y.higher_vertex ? x.higher_vertex < y.higher_vertex : x.half_edge < y.half_edge;
+    });
+    for (auto it = begin; it != end; ++it) {
+      if (it == begin || it->higher_vertex != (it - 1)->higher_vertex) {
+        if (numbering.edge_endpoints.size() >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+          throw std::invalid_argument("number_edges: too many edges for 32-bit indices");
+        numbering.edge_endpoints.push_back({static_cast<std::int32_t>(v), it->higher_vertex});
+      }
+      numbering.edge_of_half_edge[it->half_edge] = static_cast<std::int32_t>(numbering.edge_endpoints.size() - 1);
+    }
+  }
+  return numbering;
+}
 
 VertexRings build_vertex_rings(std::int32_t vertex_count, const std::vector<Triangle>& triangles) {
   // At vertex a, triangle (a, b, c) says: counter-clockwise after b comes c.

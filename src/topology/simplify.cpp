@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "spheremap/geometry/vec.hpp"
-#include "../surface/parallel.hpp"
+#include "../util/parallel.hpp"
 #include "simplify_tuning.hpp"
 
 namespace spheremap {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../test_support.hpp"
+#include "spheremap/attributes.hpp"
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/mesh.hpp"
@@ -75,8 +76,8 @@ TEST_F(Cli, MapsAMeshAndWritesThreeFilesIdenticallyTwice) {
   EXPECT_EQ(sphere.faces, surface.faces);
   const auto header = slurp(folder_ / "a" / "sphere.ply").substr(0, 600);
   EXPECT_NE(header.find("binary_little_endian"), std::string::npos);
-  EXPECT_NE(header.find("property double theta"), std::string::npos);
-  EXPECT_NE(header.find("property double phi"), std::string::npos);
+  EXPECT_NE(header.find(std::string("property double ") + attributes::kTheta), std::string::npos);
+  EXPECT_NE(header.find(std::string("property double ") + attributes::kPhi), std::string::npos);
 }
 
 // The command replaces libgomp's GOMP_parallel with a call on the calling thread (cli/serial_openmp.cpp);
@@ -102,7 +103,7 @@ TEST_F(Cli, TheCommandMapsAMeshExactlyAsTheLibraryDoes) {
   options.map.poles = std::make_pair(north, south);
   const MapJobResult library = run_map_job(input, options);
   ASSERT_TRUE(library.map.certificate.certified());
-  ASSERT_GT(library.map.reweighting_rounds, 0);
+  ASSERT_GT(library.map.diagnostics.repair.reweighting_rounds, 0);
   const auto written = read_polygon_soup(folder_ / "cli" / "sphere.ply");
   ASSERT_EQ(written.positions.size(), library.map.sphere.size());
   std::size_t different = 0;
@@ -327,19 +328,19 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   ASSERT_EQ(map.exit_code, 0) << map.output;
   EXPECT_NE(map.output.find("327 atoms"), std::string::npos) << map.output;
   const auto header = slurp(folder_ / "crambin" / "sphere.ply").substr(0, 2000);
-  for (const char* property : {"property int atomid", "property int vertex_atom_serial", "property int vertex_residue_number",
-                               "property int vertex_model", "property list uchar uchar vertex_atom_name",
-                               "property list uchar uchar vertex_element", "property list uchar uchar vertex_residue_name",
-                               "property list uchar uchar vertex_insertion_code", "property list uchar uchar vertex_chain",
-                               "property double vertex_b_factor"})
-    EXPECT_NE(header.find(property), std::string::npos) << property;
-  EXPECT_EQ(header.find("vertex_charge"), std::string::npos);  // an mmCIF file has no partial charges
+  using namespace attributes;
+  for (const char* name : {kAtomId, kAtomSerial, kResidueNumber, kModel})
+    EXPECT_NE(header.find(std::string("property int ") + name + "\n"), std::string::npos) << name;
+  for (const char* name : {kAtomName, kElement, kResidueName, kInsertionCode, kChain})
+    EXPECT_NE(header.find(std::string("property list uchar uchar ") + name + "\n"), std::string::npos) << name;
+  EXPECT_NE(header.find(std::string("property double ") + kBFactor + "\n"), std::string::npos);
+  EXPECT_EQ(header.find(kCharge), std::string::npos);  // an mmCIF file has no partial charges
   EXPECT_NE(slurp(folder_ / "crambin" / "report.json").find("\"probe\": 1.4"), std::string::npos);
 
   const auto surface = run_cli("surface " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn.ply").string() +
                                " --probe 1.8 --grid 0.6");
   ASSERT_EQ(surface.exit_code, 0) << surface.output;
-  EXPECT_NE(slurp(folder_ / "crn.ply").substr(0, 400).find("property int atomid"), std::string::npos);
+  EXPECT_NE(slurp(folder_ / "crn.ply").substr(0, 400).find(std::string("property int ") + kAtomId), std::string::npos);
 
   // --cavities: crambin's buried cavity (at 0.5 Å, probe 1.4 Å) becomes a reported component; the outer
   // surface, which is mapped, is the same as without it.

@@ -1,4 +1,5 @@
 // Tests of read_polygon_soup, write_ply and write_file_atomically.
+#include "spheremap/attributes.hpp"
 #include "spheremap/io/mesh_io.hpp"
 
 #include <gtest/gtest.h>
@@ -153,8 +154,8 @@ TEST_F(PlyWriter, HeaderListsRealAttributesThenIntegerAttributesInNameOrder) {
 
 TEST_F(PlyWriter, TextAttributesAreByteListsThatReadersSkip) {
   Mesh mesh = tetrahedron_with_attributes();
-  mesh.text_attributes["vertex_atom_name"] = TextAttribute{{"CA", "", "OXT"}, {0, 2, 1, 0}};
-  const std::string header_line = "property list uchar uchar vertex_atom_name\n";
+  mesh.text_attributes[attributes::kAtomName] = TextAttribute{{"CA", "", "OXT"}, {0, 2, 1, 0}};
+  const std::string header_line = std::string("property list uchar uchar ") + attributes::kAtomName + "\n";
   for (const bool ascii : {false, true}) {
     const fs::path path = folder_ / (ascii ? "text-ascii.ply" : "text.ply");
     write_ply(path, mesh, {.ascii = ascii});
@@ -175,7 +176,7 @@ TEST_F(PlyWriter, TextAttributesAreByteListsThatReadersSkip) {
     expect_positions_bit_exact(soup.positions, mesh.positions);
     EXPECT_EQ(soup.faces, faces_of(mesh));
   }
-  mesh.text_attributes["vertex_atom_name"].codes[0] = 7;
+  mesh.text_attributes[attributes::kAtomName].codes[0] = 7;
   EXPECT_THROW(write_ply(folder_ / "bad.ply", mesh), std::invalid_argument);
 }
 

@@ -35,13 +35,6 @@ std::string small_pdb() {
          record("HETATM", 7, " O", ' ', "HOH", 'A', 4, 9.000, 5.000, -4.000, 1, "O") + "END\n";
 }
 
-TEST(Radii, BondiTableAndCustomTables) {
-  EXPECT_DOUBLE_EQ(*bondi_radius("C"), 1.70);
-  EXPECT_DOUBLE_EQ(*bondi_radius("cl"), 1.75);
-  EXPECT_DOUBLE_EQ(*bondi_radius("O"), 1.52);
-  EXPECT_FALSE(bondi_radius("FE").has_value());
-}
-
 TEST_F(Structure, DefaultsKeepTheMostOccupiedAltlocAndDropHydrogensAndWaters) {
   const auto molecule = read_structure(write("small.pdb", small_pdb()));
   ASSERT_EQ(molecule.atoms.size(), 4u);  // N, CA (altloc B), C, FE

@@ -35,7 +35,7 @@ TEST_F(DataPipeline, EveryStructureMapsCertifiedAtOneAngstrom) {
     if (c.certified()) ++certified;
     else failures.push_back(file.filename().string());
     if (result.topology.genus_before != 0) ++repaired;
-    amd += result.map.elimination_order == "amd";
+    amd += result.map.diagnostics.solve.elimination_order == FillReducingOrder::kAmd;
   }
   // Molecular surfaces of 5k vertices or more are factorized in AMD's order (fewer flops than the
   // geometric one's on every one measured).
@@ -54,16 +54,16 @@ TEST_F(DataPipeline, GroELMapsCertifiedAtTheDefaultGrid) {
   if (!fs::exists(file)) GTEST_SKIP() << "shared data not found: " << file << " (skipped on purpose)";
   const MapJobResult result = run_map_job(file, MapJobOptions{});
   EXPECT_GT(result.topology.genus_before, 0);
-  EXPECT_GT(result.map.plain_certificate.collapsed, 100000);
+  EXPECT_GT(result.map.diagnostics.repair.plain_certificate.collapsed, 100000);
   const auto& c = result.map.certificate;
   EXPECT_TRUE(c.certified()) << c.folded << " folded, " << c.collapsed << " collapsed, smallest ratio " << c.min_area_ratio;
-  EXPECT_EQ(result.map.elimination_order, "amd");
+  EXPECT_EQ(result.map.diagnostics.solve.elimination_order, FillReducingOrder::kAmd);
   // Its equalizing rounds each collapse a few hundred triangles that untangling lifts again; before such
   // rounds were untangled, none was kept (area distortion 186% instead of 134-140%).
-  EXPECT_GT(result.map.equalizing_rounds, 0);
+  EXPECT_GT(result.map.diagnostics.repair.equalizing_rounds, 0);
   std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds (%d equalizing), %lld untangling moves, smallest ratio %.3g\n",
-              result.map.sphere.size(), result.map.reweighting_rounds, result.map.equalizing_rounds,
-              static_cast<long long>(result.map.untangling_moves), c.min_area_ratio);
+              result.map.sphere.size(), result.map.diagnostics.repair.reweighting_rounds, result.map.diagnostics.repair.equalizing_rounds,
+              static_cast<long long>(result.map.diagnostics.repair.untangling_moves), c.min_area_ratio);
 }
 
 }  // namespace

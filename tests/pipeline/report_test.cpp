@@ -50,21 +50,22 @@ TEST_F(Report, ReadsBackWhatMakeReportWrote) {
   EXPECT_EQ(r.genus, 0);
   EXPECT_FALSE(r.structure.has_value());
   EXPECT_FALSE(r.simplification.has_value());
-  EXPECT_EQ(r.map_method, m.map.method);
-  EXPECT_EQ(r.solver, m.map.solver_used);
-  EXPECT_EQ(r.north_pole, m.map.north);
-  EXPECT_EQ(r.south_pole, m.map.south);
-  EXPECT_EQ(r.pole_graph_distance, m.map.pole_graph_distance);
-  EXPECT_EQ(r.split_edges, static_cast<std::int64_t>(m.map.split_edges.size()));
-  EXPECT_EQ(r.reweighting_rounds, m.map.reweighting_rounds);
-  EXPECT_EQ(r.untangling_moves, m.map.untangling_moves);
+  const auto& diagnostics = m.map.diagnostics;
+  EXPECT_EQ(r.map_method, to_string(diagnostics.construction.method));
+  EXPECT_EQ(r.solver, to_string(diagnostics.solve.solver));
+  EXPECT_EQ(r.north_pole, m.map.poles.north);
+  EXPECT_EQ(r.south_pole, m.map.poles.south);
+  EXPECT_EQ(r.pole_graph_distance, m.map.poles.graph_distance);
+  EXPECT_EQ(r.split_edges, static_cast<std::int64_t>(diagnostics.construction.split_edges.size()));
+  EXPECT_EQ(r.reweighting_rounds, diagnostics.repair.reweighting_rounds);
+  EXPECT_EQ(r.untangling_moves, diagnostics.repair.untangling_moves);
   EXPECT_EQ(r.superposition_rmsd, m.map.superposition.rmsd);
   EXPECT_EQ(r.certificate.certified, m.map.certificate.certified());
   EXPECT_EQ(r.certificate.folded, m.map.certificate.folded);
   EXPECT_EQ(r.certificate.coverage, m.map.certificate.coverage);
   EXPECT_EQ(r.certificate.decided_exactly, m.map.certificate.decided_exactly);
-  EXPECT_EQ(r.plain_certificate.collapsed, m.map.plain_certificate.collapsed);
-  EXPECT_EQ(r.plain_certificate.min_area_ratio, m.map.plain_certificate.min_area_ratio);
+  EXPECT_EQ(r.plain_certificate.collapsed, diagnostics.repair.plain_certificate.collapsed);
+  EXPECT_EQ(r.plain_certificate.min_area_ratio, diagnostics.repair.plain_certificate.min_area_ratio);
   EXPECT_EQ(r.distortion.area_log_ratio_mean, m.metrics.area_log_ratio_mean);
   EXPECT_EQ(r.distortion.dilatation_max, m.metrics.dilatation_max);
   EXPECT_EQ(r.distortion.octant_area_percent, m.metrics.octant_area_percent);
@@ -74,7 +75,7 @@ TEST_F(Report, ReadsBackWhatMakeReportWrote) {
                              [](const StageTime& a, const StageTime& b) { return a.stage < b.stage; }));
   EXPECT_EQ(std::count_if(r.timings.begin(), r.timings.end(), [](const StageTime& t) { return t.stage == "read"; }),
             1);
-  EXPECT_EQ(r.timings.size(), m.map.timings.size() + 3);  // read, prepare, metrics
+  EXPECT_EQ(r.timings.size(), diagnostics.timings.size() + 3);  // read, prepare, metrics
 }
 
 TEST_F(Report, ReadsTheStructurePartsAndCountsTheChangesByKind) {

@@ -285,35 +285,5 @@ TEST(ShapesCube, RejectsInvalidN) {
   EXPECT_THROW(make_subdivided_cube(-3), std::invalid_argument);
 }
 
-TEST(ShapesSubdivide, MatchesTheDirectlyBuiltFinerMeshes) {
-  const Mesh cube = subdivide_midpoint(make_subdivided_cube(1), 2);
-  EXPECT_EQ(cube.vertex_count(), make_subdivided_cube(4).vertex_count());
-  expect_oriented_sphere(cube);
-  EXPECT_NEAR(signed_volume(cube), 8.0, 1e-12);  // midpoints stay on the flat faces
-
-  const Mesh icosahedron = make_icosphere(0);
-  const Mesh subdivided = subdivide_midpoint(icosahedron, 3);
-  EXPECT_EQ(subdivided.vertex_count(), make_icosphere(3).vertex_count());
-  expect_oriented_sphere(subdivided);
-  EXPECT_LT(signed_volume(subdivided), signed_volume(icosahedron) + 1e-12);  // no smoothing, no projection
-  EXPECT_NEAR(signed_volume(subdivided), signed_volume(icosahedron), 1e-12);
-}
-
-TEST(ShapesSubdivide, LevelZeroKeepsGeometryAndAttributesAreDropped) {
-  Mesh sphere = make_icosphere(1);
-  sphere.integer_attributes["region"] = std::vector<std::int32_t>(sphere.vertex_count(), 2);
-  const Mesh same = subdivide_midpoint(sphere, 0);
-  EXPECT_TRUE(same_mesh(same, sphere));
-  EXPECT_TRUE(same.integer_attributes.empty());
-  EXPECT_TRUE(subdivide_midpoint(sphere, 1).integer_attributes.empty());
-}
-
-TEST(ShapesSubdivide, RejectsInvalidArguments) {
-  EXPECT_THROW(subdivide_midpoint(make_icosphere(0), -1), std::invalid_argument);
-  Mesh broken = make_icosphere(0);
-  broken.triangles[3][2] = -1;
-  EXPECT_THROW(subdivide_midpoint(broken, 1), std::invalid_argument);
-}
-
 }  // namespace
 }  // namespace spheremap

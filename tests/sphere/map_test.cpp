@@ -42,49 +42,12 @@ void expect_certified(const Mesh& mesh, const SphereMap& map, const std::string&
   }
 }
 
-// The first pair (i < j, in index order) at the largest squared distance, summed as farthest_pair does.
-std::pair<std::int32_t, std::int32_t> brute_force_farthest_pair(const std::vector<Vec3>& points) {
-  double best = -1;
-  std::pair<std::int32_t, std::int32_t> pair;
-  for (std::int32_t i = 0; i < static_cast<std::int32_t>(points.size()); ++i)
-    for (std::int32_t j = i + 1; j < static_cast<std::int32_t>(points.size()); ++j) {
-      double d = 0;
-      for (int a = 0; a < 3; ++a) d += std::abs(points[i][a] - points[j][a]) * std::abs(points[i][a] - points[j][a]);
-      if (d > best) best = d, pair = {i, j};
-    }
-  return pair;
-}
-
-TEST(FarthestPair, MatchesBruteForce) {
-  std::mt19937 random(7);
-  for (int trial = 0; trial < 20; ++trial) {
-    std::vector<Vec3> points(50 + trial * 37);
-    for (auto& p : points)
-      for (auto& c : p) c = static_cast<double>(random() % 1000) / 7.0;  // many exact ties
-    EXPECT_EQ(farthest_pair(points), brute_force_farthest_pair(points)) << "trial " << trial;
-  }
-  // All points on a sphere: the worst case for hull-based methods.
-  const Mesh ico = make_icosphere(3);
-  const auto [a, b] = farthest_pair(ico.positions);
-  EXPECT_NEAR(norm(ico.positions[a] - ico.positions[b]), 2.0, 1e-12);
-  // Point sets where the search visits many points (nearly all as far from the centre: past the first
-  // few, scanned, it goes through the k-d tree) and a few (a cube's corners), against brute force,
-  // ties included (antipodal pairs by the hundred).
-  for (const Mesh& shape : {make_icosphere(3), perturb_vertices(make_icosphere(3), 0.3, 4), make_subdivided_cube(12),
-                            make_ellipsoid(3, 1, 1, 1.001), make_dumbbell(3, 0.5, 20, 16)})
-    EXPECT_EQ(farthest_pair(shape.positions), brute_force_farthest_pair(shape.positions)) << shape.positions.size() << " points";
-  // Two pairs at exactly the same distance: the one of the point farthest from the centre is found first,
-  // the other (smaller indices) must still win.
-  const std::vector<Vec3> tie{{-1, 0, 0}, {1, 0, 0}, {0, -1.25, 0}, {0, 0.75, 0}, {0, 0.5, 0}};
-  EXPECT_EQ(farthest_pair(tie), (std::pair<std::int32_t, std::int32_t>{0, 1}));
-}
-
 TEST(SphereMap, IcospheresMapCertifiedAndCloseToIdentity) {
   for (int level = 0; level <= 4; ++level) {
     const Mesh mesh = prepared(make_icosphere(level));
     const auto map = map_to_sphere(mesh);
     expect_certified(mesh, map, "icosphere " + std::to_string(level));
-    EXPECT_EQ(map.plain_certificate.folded, 0);
+    EXPECT_EQ(map.diagnostics.repair.plain_certificate.folded, 0);
     // The surface is already a sphere: after superposition the map should be close to it (no mirror).
     EXPECT_LT(map.superposition.rmsd, 0.3) << level;
     std::cout << "icosphere " << level << " rmsd " << map.superposition.rmsd << "\n";
@@ -97,7 +60,7 @@ TEST(SphereMap, TinyMeshesAreMappedThroughARefinement) {
   tetra.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   const Mesh tetrahedron = prepare_mesh(tetra).mesh;
   const auto map = map_to_sphere(tetrahedron);
-  EXPECT_EQ(map.method, "refined-poles-and-rings");
+  EXPECT_EQ(map.diagnostics.construction.method, MapMethod::kRefinedPolesAndRings);
   expect_certified(tetrahedron, map, "tetrahedron");
 
   PolygonSoup octa;
@@ -120,7 +83,7 @@ TEST(SphereMap, BipyramidsWithGraphDiameterTwoAreMappedThroughARefinement) {
     }
     const Mesh mesh = prepare_mesh(soup).mesh;
     const auto map = map_to_sphere(mesh);
-    EXPECT_EQ(map.method, "refined-poles-and-rings");
+    EXPECT_EQ(map.diagnostics.construction.method, MapMethod::kRefinedPolesAndRings);
     expect_certified(mesh, map, "bipyramid " + std::to_string(equator));
   }
 }
@@ -146,7 +109,7 @@ TEST(SphereMap, RandomFlipsCreateDividingEdgesThatAreSplitAndRepaired) {
     const Mesh mesh = prepared(perturb_vertices(random_edge_flips(make_icosphere(2), 0.35, seed), 0.2, seed));
     const auto map = map_to_sphere(mesh);
     expect_certified(mesh, map, "flips seed " + std::to_string(seed));
-    total_splits += static_cast<std::int64_t>(map.split_edges.size());
+    total_splits += static_cast<std::int64_t>(map.diagnostics.construction.split_edges.size());
   }
   EXPECT_GT(total_splits, 0) << "the generated cases no longer exercise dividing edges";
 }
@@ -166,8 +129,8 @@ TEST(SphereMap, DividingEdgeThroughAPoleIsSplitAndRecorded) {
       MapOptions options;
       options.poles = std::make_pair(pole, south);
       const auto map = map_to_sphere(mesh, options);
-      EXPECT_EQ(map.north, pole);
-      EXPECT_FALSE(map.split_edges.empty());
+      EXPECT_EQ(map.poles.north, pole);
+      EXPECT_FALSE(map.diagnostics.construction.split_edges.empty());
       expect_certified(mesh, map, "degree-3 ring vertex, seed " + std::to_string(seed));
       return;
     }
@@ -181,7 +144,7 @@ TEST(SphereMap, SymmetricMeshWithZTiesIsDeterministic) {
   const auto second = map_to_sphere(mesh);
   expect_certified(mesh, first, "subdivided cube");
   ASSERT_EQ(first.sphere, second.sphere);
-  EXPECT_EQ(first.meridian, second.meridian);
+  EXPECT_EQ(first.diagnostics.construction.meridian, second.diagnostics.construction.meridian);
 }
 
 TEST(SphereMap, GaussSeidelAgreesWithTheDirectSolver) {
@@ -191,12 +154,12 @@ TEST(SphereMap, GaussSeidelAgreesWithTheDirectSolver) {
   relaxed_options.repair = direct_options.repair = false;
   const auto direct = map_to_sphere(mesh, direct_options);
   const auto relaxed = map_to_sphere(mesh, relaxed_options);
-  EXPECT_TRUE(relaxed.gauss_seidel_converged);
-  EXPECT_GT(relaxed.gauss_seidel_sweeps, 10);
+  EXPECT_TRUE(relaxed.diagnostics.solve.gauss_seidel_converged);
+  EXPECT_GT(relaxed.diagnostics.solve.gauss_seidel_sweeps, 10);
   // θ depends on z alone; φ also on the meridian, which may take another path where two descents
   // nearly tie at Gauss–Seidel's precision.
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) EXPECT_NEAR(direct.theta[v], relaxed.theta[v], 1e-9);
-  EXPECT_EQ(direct.plain_certificate.folded, relaxed.plain_certificate.folded);
+  EXPECT_EQ(direct.diagnostics.repair.plain_certificate.folded, relaxed.diagnostics.repair.plain_certificate.folded);
 }
 
 TEST(SphereMap, PolesOptionIsHonouredAndValidated) {
@@ -204,8 +167,8 @@ TEST(SphereMap, PolesOptionIsHonouredAndValidated) {
   MapOptions options;
   options.poles = std::make_pair(5, 17);
   const auto map = map_to_sphere(mesh, options);
-  EXPECT_EQ(map.north, 5);
-  EXPECT_EQ(map.south, 17);
+  EXPECT_EQ(map.poles.north, 5);
+  EXPECT_EQ(map.poles.south, 17);
   expect_certified(mesh, map, "poles 5,17");
   options.poles = std::make_pair(5, 5);
   EXPECT_THROW(map_to_sphere(mesh, options), InputError);
@@ -223,18 +186,18 @@ TEST(SphereMap, PhiIncreasesEastwardSoTheMapIsNotAMirrorImage) {
   MapOptions options;
   options.repair = false;
   const auto map = map_to_sphere(mesh, options);
-  EXPECT_EQ(map.plain_certificate.folded, 0);
-  EXPECT_NEAR(map.plain_certificate.coverage, 1.0, 1e-9);
+  EXPECT_EQ(map.diagnostics.repair.plain_certificate.folded, 0);
+  EXPECT_NEAR(map.diagnostics.repair.plain_certificate.coverage, 1.0, 1e-9);
 }
 
 TEST(SphereMap, MapMetadataFollowsThePaper) {
   const Mesh mesh = prepared(make_icosphere(3));
   const auto map = map_to_sphere(mesh);
-  const auto distance = graph_distances(build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles), map.north);
-  EXPECT_EQ(map.pole_graph_distance, distance[map.south]);
-  EXPECT_DOUBLE_EQ(map.theta0, std::numbers::pi / map.pole_graph_distance);
-  EXPECT_NEAR(map.mercator_c, 1.0 / std::log((1 + std::cos(map.theta0)) / std::sin(map.theta0)), 1e-15);
-  EXPECT_GE(map.meridian.size(), 2u);
+  const auto distance = graph_distances(build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles), map.poles.north);
+  EXPECT_EQ(map.poles.graph_distance, distance[map.poles.south]);
+  EXPECT_DOUBLE_EQ(map.diagnostics.construction.theta0, std::numbers::pi / map.poles.graph_distance);
+  EXPECT_NEAR(map.diagnostics.construction.mercator_c, 1.0 / std::log((1 + std::cos(map.diagnostics.construction.theta0)) / std::sin(map.diagnostics.construction.theta0)), 1e-15);
+  EXPECT_GE(map.diagnostics.construction.meridian.size(), 2u);
 }
 
 }  // namespace

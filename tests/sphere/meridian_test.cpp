@@ -12,6 +12,7 @@
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/shapes.hpp"
 #include "spheremap/sphere/map.hpp"
+#include "spheremap/sphere/poles.hpp"
 #include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap {

@@ -96,12 +96,12 @@ TEST(Reweighting, DeepNarrowPocketIsCertifiedInFewRounds) {
   const auto map = map_to_sphere(mesh);
   // The paper's algorithm collapses the hole far below what re-weighting by at most 4x per round could
   // undo in 40 rounds (the previous repair: 40 rounds, 1,819 triangles still collapsed).
-  EXPECT_GT(map.plain_certificate.collapsed, 1000);
-  EXPECT_LT(map.plain_certificate.min_area_ratio, 1e-15);
+  EXPECT_GT(map.diagnostics.repair.plain_certificate.collapsed, 1000);
+  EXPECT_LT(map.diagnostics.repair.plain_certificate.min_area_ratio, 1e-15);
   EXPECT_TRUE(map.certificate.certified()) << map.certificate.folded << " folded, " << map.certificate.collapsed
-                                           << " collapsed after " << map.reweighting_rounds << " rounds";
-  EXPECT_LE(map.reweighting_rounds - map.equalizing_rounds, 8);  // rounds until certified
-  EXPECT_EQ(map.plain_certificate.folded, 0);
+                                           << " collapsed after " << map.diagnostics.repair.reweighting_rounds << " rounds";
+  EXPECT_LE(map.diagnostics.repair.reweighting_rounds - map.diagnostics.repair.equalizing_rounds, 8);  // rounds until certified
+  EXPECT_EQ(map.diagnostics.repair.plain_certificate.folded, 0);
 }
 
 TEST(Reweighting, ThinFingerLeadingToNeitherPoleIsCertifiedInFewRounds) {
@@ -109,10 +109,10 @@ TEST(Reweighting, ThinFingerLeadingToNeitherPoleIsCertifiedInFewRounds) {
   MapOptions options;
   options.poles = std::make_pair(nearest_vertex(mesh, {0, 0, 1}), nearest_vertex(mesh, {0, 0, -1}));
   const auto map = map_to_sphere(mesh, options);
-  EXPECT_GT(map.plain_certificate.collapsed, 1000);
+  EXPECT_GT(map.diagnostics.repair.plain_certificate.collapsed, 1000);
   EXPECT_TRUE(map.certificate.certified()) << map.certificate.folded << " folded, " << map.certificate.collapsed
-                                           << " collapsed after " << map.reweighting_rounds << " rounds";
-  EXPECT_LE(map.reweighting_rounds - map.equalizing_rounds, 8);
+                                           << " collapsed after " << map.diagnostics.repair.reweighting_rounds << " rounds";
+  EXPECT_LE(map.diagnostics.repair.reweighting_rounds - map.diagnostics.repair.equalizing_rounds, 8);
 }
 
 // The first certified round leaves the finger tiny on the sphere; equalizing must spread it (lower
@@ -127,8 +127,8 @@ TEST(Reweighting, EqualizingLowersAreaDistortionAndStaysCertified) {
   const auto equalized = map_to_sphere(mesh, options);
   ASSERT_TRUE(first_certified.certificate.certified());
   ASSERT_TRUE(equalized.certificate.certified());
-  EXPECT_EQ(first_certified.equalizing_rounds, 0);
-  EXPECT_GT(equalized.equalizing_rounds, 0);
+  EXPECT_EQ(first_certified.diagnostics.repair.equalizing_rounds, 0);
+  EXPECT_GT(equalized.diagnostics.repair.equalizing_rounds, 0);
   const double before = measure_distortion(mesh, first_certified.sphere).area_distortion_mean_percent;
   const double after = measure_distortion(mesh, equalized.sphere).area_distortion_mean_percent;
   EXPECT_LT(after, 0.8 * before) << before << "% -> " << after << "%";
@@ -139,8 +139,8 @@ TEST(Reweighting, RepairedMapsAreReproducible) {
   const auto first = map_to_sphere(mesh);
   const auto second = map_to_sphere(mesh);
   EXPECT_EQ(first.sphere, second.sphere);
-  EXPECT_EQ(first.meridian, second.meridian);
-  EXPECT_EQ(first.reweighting_rounds, second.reweighting_rounds);
+  EXPECT_EQ(first.diagnostics.construction.meridian, second.diagnostics.construction.meridian);
+  EXPECT_EQ(first.diagnostics.repair.reweighting_rounds, second.diagnostics.repair.reweighting_rounds);
 }
 
 TEST(Reweighting, PlainAlgorithmIsReportedUnchangedByTheRepair) {
@@ -149,10 +149,10 @@ TEST(Reweighting, PlainAlgorithmIsReportedUnchangedByTheRepair) {
   plain_options.repair = false;
   const auto plain = map_to_sphere(mesh, plain_options);
   const auto repaired = map_to_sphere(mesh);
-  EXPECT_EQ(plain.plain_certificate.collapsed, repaired.plain_certificate.collapsed);
-  EXPECT_EQ(plain.plain_certificate.folded, repaired.plain_certificate.folded);
-  EXPECT_EQ(plain.plain_certificate.min_area_ratio, repaired.plain_certificate.min_area_ratio);
-  EXPECT_EQ(plain.reweighting_rounds, 0);
+  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.collapsed, repaired.diagnostics.repair.plain_certificate.collapsed);
+  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.folded, repaired.diagnostics.repair.plain_certificate.folded);
+  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.min_area_ratio, repaired.diagnostics.repair.plain_certificate.min_area_ratio);
+  EXPECT_EQ(plain.diagnostics.repair.reweighting_rounds, 0);
   EXPECT_FALSE(plain.certificate.certified());
 }
 
@@ -192,11 +192,11 @@ TEST(Reweighting, ReusedFactorizationMatchesFreshSolves) {
   const std::vector<detail::EliminationOrder> orders{detail::geometric_elimination_order(rings, mesh.positions, always_fixed),
                                                     detail::metis_elimination_order(rings, mesh.positions, always_fixed),
                                                     detail::amd_elimination_order(rings, mesh.positions, always_fixed)};
-  ASSERT_EQ(orders[1].method, "metis");
-  ASSERT_EQ(orders[2].method, "amd");
+  ASSERT_EQ(orders[1].method, FillReducingOrder::kMetis);
+  ASSERT_EQ(orders[2].method, FillReducingOrder::kAmd);
   std::vector<bool> supernodal;
   for (std::size_t o = 0; o < orders.size(); ++o) {
-    SCOPED_TRACE(orders[o].method + " order");
+    SCOPED_TRACE(std::string(to_string(orders[o].method)) + " order");
     auto factor = o == 0 ? std::make_unique<detail::ReusableCholesky>(rings, mesh.positions, always_fixed, last)
                          : std::make_unique<detail::ReusableCholesky>(rings, orders[o], last);
     supernodal.push_back(factor->supernodal());
@@ -239,13 +239,13 @@ TEST(Reweighting, CholmodOrdersAreRepeatablePermutationsOfTheUnknowns) {
     for (auto w : rings.ring(pole)) always_fixed[w] = 1;
   }
   const auto geometric = detail::geometric_elimination_order(rings, mesh.positions, always_fixed);
-  EXPECT_EQ(geometric.method, "geometric");
+  EXPECT_EQ(geometric.method, FillReducingOrder::kGeometric);
   const detail::ReusableCholesky by_geometry(rings, geometric);
   EXPECT_GT(by_geometry.flops(), 0);
   using Ordering = detail::EliminationOrder (*)(const VertexRings&, const std::vector<Vec3>&, const std::vector<char>&);
-  for (const auto& [method, ordering] : {std::pair<std::string, Ordering>{"metis", detail::metis_elimination_order},
-                                         std::pair<std::string, Ordering>{"amd", detail::amd_elimination_order}}) {
-    SCOPED_TRACE(method);
+  for (const auto& [method, ordering] : {std::pair<FillReducingOrder, Ordering>{FillReducingOrder::kMetis, detail::metis_elimination_order},
+                                         std::pair<FillReducingOrder, Ordering>{FillReducingOrder::kAmd, detail::amd_elimination_order}}) {
+    SCOPED_TRACE(to_string(method));
     const auto order = ordering(rings, mesh.positions, always_fixed);
     ASSERT_EQ(order.method, method);
     std::vector<int> seen(n, 0);
@@ -260,10 +260,10 @@ TEST(Reweighting, CholmodOrdersAreRepeatablePermutationsOfTheUnknowns) {
 // Small meshes keep the geometric order (nearly free); the report says which order was used.
 TEST(Reweighting, SmallMeshesUseTheGeometricOrder) {
   const Mesh mesh = prepare_mesh(perturb_vertices(make_icosphere(3), 0.2, 5)).mesh;
-  EXPECT_EQ(map_to_sphere(mesh).elimination_order, "geometric");
+  EXPECT_EQ(map_to_sphere(mesh).diagnostics.solve.elimination_order, FillReducingOrder::kGeometric);
   MapOptions relaxed;
   relaxed.solver = Solver::kGaussSeidel;
-  EXPECT_EQ(map_to_sphere(mesh, relaxed).elimination_order, "");
+  EXPECT_EQ(map_to_sphere(mesh, relaxed).diagnostics.solve.elimination_order, FillReducingOrder::kNone);
 }
 
 }  // namespace

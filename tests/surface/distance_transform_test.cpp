@@ -4,7 +4,7 @@
 #include <limits>
 #include <random>
 
-#include "spheremap/surface/grid.hpp"
+#include "spheremap/surface/distance_transform.hpp"
 
 namespace spheremap {
 namespace {

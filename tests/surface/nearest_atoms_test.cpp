@@ -4,9 +4,10 @@
 #include <limits>
 #include <random>
 
+#include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/surface/ses.hpp"
+#include "spheremap/surface/nearest_atoms.hpp"
 
 namespace spheremap {
 namespace {
@@ -33,10 +34,10 @@ std::int32_t brute_nearest(const Vec3& p, const std::vector<Atom>& atoms) {
 }
 
 void expect_brute_force(const Mesh& mesh, const std::vector<Atom>& atoms) {
-  const auto& index = mesh.integer_attributes.at("atomid");
-  const auto& serial = mesh.integer_attributes.at("vertex_atom_serial");
-  const auto& residue = mesh.integer_attributes.at("vertex_residue_number");
-  const auto& model = mesh.integer_attributes.at("vertex_model");
+  const auto& index = mesh.integer_attributes.at(attributes::kAtomId);
+  const auto& serial = mesh.integer_attributes.at(attributes::kAtomSerial);
+  const auto& residue = mesh.integer_attributes.at(attributes::kResidueNumber);
+  const auto& model = mesh.integer_attributes.at(attributes::kModel);
   ASSERT_EQ(index.size(), mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     const std::int32_t expected = brute_nearest(mesh.positions[v], atoms);
@@ -81,13 +82,13 @@ TEST(NearestAtoms, TiesGoToTheSmallestIndexAndCellBordersLoseNothing) {
   add_nearest_atoms(mesh, atoms, SurfaceOptions{});
   expect_brute_force(mesh, atoms);
   // On the mirror plane (away from the third atom) the tie goes to atom 0.
-  EXPECT_EQ(mesh.integer_attributes.at("atomid")[mesh.vertex_count() - 101], 0);
+  EXPECT_EQ(mesh.integer_attributes.at(attributes::kAtomId)[mesh.vertex_count() - 101], 0);
 }
 
 TEST(NearestAtoms, AnEmptyMeshNeedsNoAtomsAndAMeshWithoutAtomsIsRefused) {
   Mesh empty;
   add_nearest_atoms(empty, {}, SurfaceOptions{});
-  EXPECT_TRUE(empty.integer_attributes.at("atomid").empty());
+  EXPECT_TRUE(empty.integer_attributes.at(attributes::kAtomId).empty());
   Mesh one;
   one.positions.push_back({0, 0, 0});
   EXPECT_THROW(add_nearest_atoms(one, {}, SurfaceOptions{}), InputError);

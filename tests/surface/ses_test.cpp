@@ -10,6 +10,7 @@
 #include <numbers>
 #include <algorithm>
 
+#include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
 
@@ -91,8 +92,8 @@ TEST(Ses, EveryVertexCarriesItsNearestAtom) {
   std::vector<Atom> atoms;
   for (int k = 0; k < 12; ++k) atoms.push_back(atom_at({1.3 * k, 0.7 * (k % 3), 0.4 * (k % 2)}, 1.5 + 0.05 * k, 100 + k));
   const Mesh mesh = solvent_excluded_surface(atoms, SurfaceOptions{});
-  const auto& index = mesh.integer_attributes.at("atomid");
-  const auto& serial = mesh.integer_attributes.at("vertex_atom_serial");
+  const auto& index = mesh.integer_attributes.at(attributes::kAtomId);
+  const auto& serial = mesh.integer_attributes.at(attributes::kAtomSerial);
   ASSERT_EQ(index.size(), mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     double best = INFINITY;

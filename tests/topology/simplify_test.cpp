@@ -9,6 +9,7 @@
 
 #include "../test_support.hpp"
 #include "../../src/topology/simplify_tuning.hpp"
+#include "spheremap/attributes.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/shapes.hpp"
 #include "spheremap/topology/components.hpp"
@@ -135,7 +136,7 @@ TEST(Simplify, ExtractComponentInPlaceMatchesTheCopy) {
   // Interleave the components' triangles so that compacting moves entries across the whole arrays.
   std::rotate(three.triangles.begin(), three.triangles.begin() + 7, three.triangles.end());
   const auto n = three.vertex_count();
-  auto& ids = three.integer_attributes["atomid"];
+  auto& ids = three.integer_attributes[attributes::kAtomId];
   auto& heights = three.real_attributes["height"];
   auto& names = three.text_attributes["name"];
   names.dictionary = {"a", "b", "c"};

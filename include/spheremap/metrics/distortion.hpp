@@ -38,19 +38,4 @@ struct DistortionMetrics {
 /// Throws std::invalid_argument if the sizes disagree.
 DistortionMetrics measure_distortion(const Mesh& surface, const std::vector<Vec3>& sphere);
 
-/// Rigid rotation R (row-major 3x3) minimizing Σ |R s_i * scale - (p_i - centroid)|² over rotations,
-/// where s_i are unit sphere points and p_i the surface points (Kearsley 1989 quaternion method).
-struct Superposition {
-  std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
-  Vec3 centroid{0, 0, 0};   // centroid of the surface vertices
-  double scale = 1;         // RMS distance of surface vertices to their centroid
-  double rmsd = 0;          // sqrt(mean |R s_i * scale - (p_i - centroid)|²), in surface units
-};
-
-/// Preconditions: same sizes, at least 3 points. Throws std::invalid_argument otherwise.
-Superposition superpose_sphere_on_surface(const std::vector<Vec3>& surface_points,
-                                          const std::vector<Vec3>& sphere_points);
-
-Vec3 rotate(const std::array<double, 9>& rotation, const Vec3& v);
-
 }  // namespace spheremap

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "spheremap/mesh.hpp"
+#include "spheremap/molecule/radii.hpp"
 
 namespace spheremap {
 
@@ -71,14 +72,5 @@ struct Molecule {
 /// empty, not a structure, has a non-finite or absurd coordinate (beyond ±1e5 Å), has fewer than two
 /// atoms after filtering, or the model / chains asked for do not exist.
 Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options = {});
-
-inline constexpr double kUnknownElementRadius = 1.8;
-
-/// Bondi (1964) van der Waals radius of an element symbol (any case), if tabulated.
-std::optional<double> bondi_radius(const std::string& element);
-
-/// Reads a radius table: one "ELEMENT RADIUS" pair per line, '#' starts a comment.
-/// Throws InputError naming the file and line on a malformed line or a radius outside (0, 10] Å.
-std::map<std::string, double> load_radius_table(const std::filesystem::path& path);
 
 }  // namespace spheremap

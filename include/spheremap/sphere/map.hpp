@@ -4,13 +4,13 @@
 
 #include <cstdint>
 #include <optional>
-#include <string>
 #include <utility>
 #include <vector>
 
+#include "spheremap/geometry/superposition.hpp"
 #include "spheremap/mesh.hpp"
-#include "spheremap/metrics/distortion.hpp"
 #include "spheremap/sphere/certify.hpp"
+#include "spheremap/timing.hpp"
 
 namespace spheremap {
 
@@ -51,50 +51,97 @@ struct SplitEdge {
   char pole;               // 'N' or 'S': the ring they belong to
 };
 
-struct StageTime {
-  std::string stage;
-  double seconds;
+/// Which construction made the map (report.json: map.method).
+enum class MapMethod {
+  kPolesAndRings,         // "poles-and-rings": the paper's
+  kRefinedPolesAndRings,  // "refined-poles-and-rings": a midpoint subdivision mapped (poles < 4 edges apart)
 };
 
+/// How the boundary meridian was found (report.json: map.meridian_method).
+enum class MeridianMethod {
+  kNone,             // "": no meridian on this mesh (a refined map's is on the subdivision)
+  kSteepestDescent,  // "steepest-descent": the paper's
+  /// "shortest-path": every descent stalled at an interior minimum of z, which only weights that can be
+  /// negative (cotangent) allow.
+  kShortestPath,
+};
+
+/// The solver of the linear systems (report.json: map.solver).
+enum class LinearSolver {
+  kNone,         // "none": nothing to solve (every vertex fixed)
+  kCholmodLlt,   // "cholmod-llt": sparse Cholesky, symmetric weights
+  kUmfpackLu,    // "umfpack-lu": sparse LU, weights that are not symmetric
+  kGaussSeidel,  // "gauss-seidel": the paper's relaxation
+};
+
+/// Fill-reducing order of the Cholesky factorizations (report.json: map.elimination_order).
+enum class FillReducingOrder {
+  kNone,       // "": no Cholesky factorization
+  kGeometric,  // "geometric": our nested dissection (best on smooth, convex-ish shapes)
+  kAmd,        // "amd": CHOLMOD's approximate minimum degree (fewer flops on molecular surfaces)
+  kMetis,      // "metis": METIS's nested dissection (benchmarks and tests only)
+};
+
+/// The poles of the map.
+struct MapPoles {
+  std::int32_t north = -1, south = -1;
+  bool from_options = false;        // given by MapOptions::poles (otherwise farthest_pair)
+  std::int32_t graph_distance = 0;  // d_s: edges between them
+};
+
+/// The paper's construction on the mesh mapped (poles-and-rings). A refined map reports the refinement
+/// and takes theta0 and mercator_c from its subdivision's map; the rest keep their defaults.
+struct MapConstruction {
+  MapMethod method = MapMethod::kPolesAndRings;
+  int refinement_levels = 0;              // midpoint subdivisions mapped instead of the mesh
+  double theta0 = 0;                      // π / d_s
+  double mercator_c = 0, ring_z = 1;      // C and Z of the Mercator scaling
+  std::int32_t north_ring_size = 0, south_ring_size = 0;
+  std::vector<SplitEdge> split_edges;
+  std::vector<std::int32_t> meridian;     // boundary meridian, north ring to south ring
+  MeridianMethod meridian_method = MeridianMethod::kNone;
+  /// The re-weighting round whose z the meridian was found for (0: the plain map's). Rounds keep the
+  /// meridian of the best map so far while their z strictly decreases along it (a chord-free path from
+  /// ring to ring, so Floater's theorem applies as to a fresh one), and find a new one otherwise.
+  int meridian_round = 0;
+};
+
+/// How the linear systems were solved.
+struct SolveDiagnostics {
+  LinearSolver solver = LinearSolver::kNone;  // of the final map's z
+  /// Geometric, or AMD where it needs fewer flops (as on molecular surfaces); kNone without Cholesky.
+  FillReducingOrder elimination_order = FillReducingOrder::kNone;
+  std::int64_t gauss_seidel_sweeps = 0;
+  bool gauss_seidel_converged = true;
+  std::int64_t weight_fallback_rows = 0;  // vertices whose mean-value/cotangent weights were not finite
+};
+
+/// What the repair (MapOptions::repair) did to the paper's algorithm's result.
+struct RepairDiagnostics {
+  Certificate plain_certificate;  // the paper's algorithm alone (before any repair)
+  int reweighting_rounds = 0;
+  int equalizing_rounds = 0;  // of reweighting_rounds, the rounds kept by equalizing after certification
+  std::int64_t untangling_moves = 0;
+};
+
+/// How the map was made: for the report and for tuning, not needed to use the map.
+struct MapDiagnostics {
+  MapConstruction construction;
+  SolveDiagnostics solve;
+  RepairDiagnostics repair;
+  std::vector<StageTime> timings;  // "poles", "rings" or "solve", "certify-plain", "reweight", ...
+};
+
+/// The map and its certificate, then how it was made.
 struct SphereMap {
   /// One unit vector per input vertex, rotated by the superposition so the globe faces like the surface.
   std::vector<Vec3> sphere;
   /// Map coordinates before the superposition: θ in [0, π] from the north pole, φ in [0, 2π).
   std::vector<double> theta, phi;
   Superposition superposition;
-
-  std::int32_t north = -1, south = -1;
-  bool poles_from_options = false;
-  std::string method;  // "poles-and-rings" (the paper's) or "refined-poles-and-rings" (poles < 4 edges apart)
-  int refinement_levels = 0;  // midpoint subdivisions mapped instead of the mesh (poles < 4 edges apart)
-  std::int32_t pole_graph_distance = 0;  // d_s
-  double theta0 = 0;                     // π / d_s
-  double mercator_c = 0, ring_z = 1;     // C and Z of the Mercator scaling
-  std::int32_t north_ring_size = 0, south_ring_size = 0;
-  std::vector<SplitEdge> split_edges;
-  std::vector<std::int32_t> meridian;  // boundary meridian, north ring to south ring
-  /// "steepest-descent" (the paper's), or "shortest-path" when every descent stalls at an interior
-  /// minimum of z, which only weights that can be negative (cotangent) allow.
-  std::string meridian_method;
-  /// The re-weighting round whose z the meridian was found for (0: the plain map's). Rounds keep the
-  /// meridian of the best map so far while their z strictly decreases along it (a chord-free path from
-  /// ring to ring, so Floater's theorem applies as to a fresh one), and find a new one otherwise.
-  int meridian_round = 0;
-
-  std::string solver_used;  // e.g. "cholmod-llt", "umfpack-lu", "gauss-seidel"
-  /// Fill-reducing order of the Cholesky factorizations: "geometric" (our nested dissection) or "amd"
-  /// (CHOLMOD's AMD, where it needs fewer flops, as on molecular surfaces); empty without them.
-  std::string elimination_order;
-  std::int64_t gauss_seidel_sweeps = 0;
-  bool gauss_seidel_converged = true;
-  std::int64_t weight_fallback_rows = 0;  // vertices whose mean-value/cotangent weights were not finite
-
-  Certificate plain_certificate;  // the paper's algorithm alone (before any repair)
-  int reweighting_rounds = 0;
-  int equalizing_rounds = 0;  // of reweighting_rounds, the rounds kept by equalizing after certification
-  std::int64_t untangling_moves = 0;
-  Certificate certificate;  // of the final map
-  std::vector<StageTime> timings;
+  MapPoles poles;
+  Certificate certificate;  // of `sphere`
+  MapDiagnostics diagnostics;
 };
 
 /// Maps `mesh` one-to-one onto the unit sphere.
@@ -105,12 +152,12 @@ struct SphereMap {
 /// The result is always returned, certified or not: check result.certificate.certified().
 SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options = {});
 
-/// The two vertices farthest apart (exact maximum of the squared distances as computed in double),
-/// found with a k-d tree and branch-and-bound instead of all pairs. Ties go to the smallest index
-/// pair. Precondition: at least 2 positions. The first index is smaller than the second.
-std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& positions);
-
+/// The names report.json and the command line use (e.g. "mean-value", "direct", "poles-and-rings").
 const char* to_string(Weights weights);
 const char* to_string(Solver solver);
+const char* to_string(MapMethod method);
+const char* to_string(MeridianMethod method);
+const char* to_string(LinearSolver solver);
+const char* to_string(FillReducingOrder order);
 
 }  // namespace spheremap

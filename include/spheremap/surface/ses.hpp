@@ -79,7 +79,4 @@ Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptio
 Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options);
 Mesh surface_from_field(const Grid3<float>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options);
 
-/// Sets the provenance attributes of solvent_excluded_surface on every vertex of `mesh`.
-void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const SurfaceOptions& options);
-
 }  // namespace spheremap

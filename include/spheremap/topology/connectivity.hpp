@@ -1,6 +1,8 @@
 // Adjacency of a closed oriented 2-manifold triangle mesh (stage: topology).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -29,6 +31,29 @@ struct VertexRings {
 /// vertices (as produced by prepare_mesh). Throws std::invalid_argument if a vertex's triangles do not
 /// form a single closed fan (the precondition is violated).
 VertexRings build_vertex_rings(std::int32_t vertex_count, const std::vector<Triangle>& triangles);
+
+/// Half-edge h = 3 * triangle + corner runs from triangles[h / 3][h % 3] to the next corner's vertex.
+inline std::size_t next_half_edge(std::size_t h) { return h - h % 3 + (h + 1) % 3; }
+inline std::size_t previous_half_edge(std::size_t h) { return h - h % 3 + (h + 2) % 3; }
+inline std::int32_t half_edge_origin(const std::vector<Triangle>& triangles, std::size_t h) {
+  return triangles[h / 3][h % 3];
+}
+inline std::int32_t half_edge_target(const std::vector<Triangle>& triangles, std::size_t h) {
+  return triangles[h / 3][(h + 1) % 3];
+}
+
+/// Both half-edges of an edge share one edge id; ids are dense and numbered in (lower vertex,
+/// higher vertex) order, so the numbering is deterministic.
+struct EdgeNumbering {
+  std::vector<std::int32_t> edge_of_half_edge;
+  std::vector<std::array<std::int32_t, 2>> edge_endpoints;  // lower vertex first
+};
+
+/// Numbers the edges of any triangle soup (no manifold precondition: an edge is a pair of vertices,
+/// however many triangles share it). Linear in the triangles.
+/// Preconditions: every index in [0, vertex_count).
+/// Throws std::invalid_argument if there are 2^31 - 1 edges or more.
+EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles);
 
 /// Breadth-first graph distances (in edges) from `source`; unreachable vertices get -1.
 std::vector<std::int32_t> graph_distances(const VertexRings& rings, std::int32_t source);

@@ -1,3 +1,5 @@
+#include "spheremap/sphere/poles.hpp"
+
 // Exact farthest pair by branch and bound on a k-d tree: O(n log n) in practice, even on meshes whose
 // vertices all lie on a sphere (where the convex hull has every vertex).
 #include <algorithm>
@@ -6,7 +8,6 @@
 #include <stdexcept>
 
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/sphere/map.hpp"
 
 namespace spheremap {
 namespace {

@@ -1,5 +1,5 @@
-// Private to the library (the surface stage, and the certificate): a tiny deterministic work-sharing loop
-// on std::thread, and the mapping of large arrays' pages from several threads.
+// Private to the library (util/: every layer may use it): a tiny deterministic work-sharing loop on
+// std::thread, and the mapping of large arrays' pages from several threads.
 #pragma once
 
 #include <algorithm>

@@ -1,0 +1,46 @@
+#include "spheremap/topology/connectivity.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "spheremap/shapes.hpp"
+
+namespace spheremap {
+namespace {
+
+TEST(NumberEdges, BothHalfEdgesOfAnEdgeShareADenseIdInVertexOrder) {
+  const Mesh mesh = make_icosphere(1);
+  const auto edges = number_edges(mesh.positions.size(), mesh.triangles);
+  ASSERT_EQ(edges.edge_of_half_edge.size(), 3 * mesh.triangles.size());
+  EXPECT_EQ(edges.edge_endpoints.size(), 3 * mesh.triangles.size() / 2);  // closed: E = 3F/2
+  for (std::size_t e = 1; e < edges.edge_endpoints.size(); ++e) {
+    EXPECT_LT(edges.edge_endpoints[e][0], edges.edge_endpoints[e][1]);
+    EXPECT_LT(edges.edge_endpoints[e - 1], edges.edge_endpoints[e]);  // (lower, higher) order, no repeats
+  }
+  std::vector<int> seen(edges.edge_endpoints.size(), 0);
+  for (std::size_t h = 0; h < edges.edge_of_half_edge.size(); ++h) {
+    const auto e = edges.edge_of_half_edge[h];
+    ASSERT_GE(e, 0);
+    ++seen[static_cast<std::size_t>(e)];
+    const auto a = half_edge_origin(mesh.triangles, h), b = half_edge_target(mesh.triangles, h);
+    EXPECT_EQ(edges.edge_endpoints[static_cast<std::size_t>(e)], (std::array<std::int32_t, 2>{std::min(a, b), std::max(a, b)}));
+  }
+  for (const int count : seen) EXPECT_EQ(count, 2);
+}
+
+TEST(NumberEdges, HalfEdgesWalkTheirTriangle) {
+  const std::vector<Triangle> triangles{{4, 7, 9}};
+  EXPECT_EQ(next_half_edge(0), 1u);
+  EXPECT_EQ(next_half_edge(2), 0u);
+  EXPECT_EQ(previous_half_edge(0), 2u);
+  EXPECT_EQ(half_edge_origin(triangles, 1), 7);
+  EXPECT_EQ(half_edge_target(triangles, 2), 4);
+}
+
+}  // namespace
+}  // namespace spheremap
