@@ -241,9 +241,10 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
   return atoms;
 }
 
-}  // namespace
-
-Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options) {
+// The file's atoms of the model asked for, unfiltered. Throws InputError when the file is missing, empty,
+// of an unknown format, holds no atoms, or lacks the model.
+std::vector<RawAtom> read_raw_atoms(const std::filesystem::path& path, const StructureOptions& options,
+                                    StructureReport& report) {
   if (!std::filesystem::exists(path))
     throw InputError(fmt::format("{}: no such file; check the path", path.string()));
   if (std::filesystem::is_empty(path)) throw InputError(fmt::format("{}: the file is empty", path.string()));
@@ -253,8 +254,6 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
     throw InputError(fmt::format("{}: unknown structure format '{}'; spheremap reads .pdb, .ent, .cif, .mmcif (also "
                                  ".gz) and .pqr",
                                  path.string(), extension));
-  Molecule molecule;
-  StructureReport& report = molecule.report;
   std::vector<RawAtom> raw;
   if (pqr) {
     raw = read_pqr(path);
@@ -266,17 +265,23 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
   }
   report.atoms_in_model = static_cast<std::int64_t>(raw.size());
   if (raw.empty()) throw InputError(fmt::format("{}: the file contains no atoms", path.string()));
+  return raw;
+}
 
-  if (!options.chains.empty()) {
-    std::set<std::string> present;
-    for (const auto& a : raw) present.insert(a.atom.chain);
-    for (const auto& wanted : options.chains)
-      if (!present.count(wanted))
-        throw InputError(fmt::format("{}: chain '{}' does not exist; the chains are: {}", path.string(), wanted,
-                                     fmt::join(present, ", ")));
-  }
+// Throws InputError naming the chains there are when one asked for is not.
+void require_chains(const std::vector<RawAtom>& raw, const std::vector<std::string>& chains,
+                    const std::filesystem::path& path) {
+  if (chains.empty()) return;
+  std::set<std::string> present;
+  for (const auto& a : raw) present.insert(a.atom.chain);
+  for (const auto& wanted : chains)
+    if (!present.count(wanted))
+      throw InputError(fmt::format("{}: chain '{}' does not exist; the chains are: {}", path.string(), wanted,
+                                   fmt::join(present, ", ")));
+}
 
-  // The most occupied alternate location of each residue (mean occupancy of its atoms; ties: first letter).
+// The most occupied alternate location of each residue (mean occupancy of its atoms; ties: first letter).
+std::map<std::string, char> kept_alternate_locations(const std::vector<RawAtom>& raw) {
   std::map<std::string, std::map<char, std::pair<double, int>>> occupancy_by_residue;
   for (const auto& a : raw) {
     if (a.altloc == 0 || a.altloc == ' ') continue;
@@ -294,59 +299,96 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
     }
     kept_altloc[key] = best;
   }
+  return kept_altloc;
+}
 
-  std::map<std::string, std::vector<std::string>> unknown_radius;  // element -> atom descriptions
+// Whether the options leave the atom out (counted in the report by why).
+bool filtered_out(const RawAtom& a, const StructureOptions& options, std::map<std::string, char>& kept_altloc,
+                  StructureReport& report) {
+  if (a.altloc != 0 && a.altloc != ' ' && kept_altloc[a.residue_key] != a.altloc) {
+    ++report.alternate_locations_removed;
+    return true;
+  }
+  if (!options.chains.empty() && std::find(options.chains.begin(), options.chains.end(), a.atom.chain) == options.chains.end()) {
+    ++report.other_chains_removed;
+    return true;
+  }
+  if (a.hydrogen && !options.keep_hydrogens) {
+    ++report.hydrogens_removed;
+    return true;
+  }
+  if (a.water && !options.keep_waters) {
+    ++report.waters_removed;
+    return true;
+  }
+  if (a.atom.hetero && !a.water && !options.keep_hetero) {
+    ++report.hetero_removed;
+    return true;
+  }
+  return false;
+}
+
+// Throws InputError when a coordinate is not finite or beyond kAbsurdCoordinate.
+void require_real_position(const RawAtom& a, const std::filesystem::path& path) {
+  for (double c : a.atom.position) {
+    if (!std::isfinite(c) || std::abs(c) > kAbsurdCoordinate)
+      throw InputError(fmt::format("{}: atom {} ({} {}{}) has the coordinate {}, which is not a real position; fix "
+                                   "the file",
+                                   path.string(), a.atom.serial, a.atom.name, a.atom.residue_name, a.atom.residue_number, c));
+  }
+}
+
+// Radii by element from options.radii or the Bondi table; elements neither lists get kUnknownElementRadius,
+// and one warning each naming up to five of their atoms.
+class ElementRadii {
+ public:
+  explicit ElementRadii(const StructureOptions& options) : options_(options) {}
+
+  double radius(const Atom& atom) {
+    std::optional<double> radius;
+    if (options_.radii) {
+      const auto it = options_.radii->find(atom.element);
+      if (it != options_.radii->end()) radius = it->second;
+    } else {
+      radius = bondi_radius(atom.element);
+    }
+    if (radius) return *radius;
+    auto& named = unknown_[atom.element];
+    if (named.size() < 5)
+      named.push_back(fmt::format("{} {} {}{}", atom.name, atom.residue_name, atom.chain, atom.residue_number));
+    else if (named.size() == 5)
+      named.push_back("...");
+    return kUnknownElementRadius;
+  }
+
+  void add_warnings(std::vector<std::string>& warnings) const {
+    for (const auto& [element, atoms] : unknown_)
+      warnings.push_back(fmt::format("no radius for element '{}' ({}): {} Å used", element, fmt::join(atoms, "; "),
+                                     kUnknownElementRadius));
+  }
+
+ private:
+  const StructureOptions& options_;
+  std::map<std::string, std::vector<std::string>> unknown_;  // element -> atom descriptions
+};
+
+}  // namespace
+
+Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options) {
+  Molecule molecule;
+  StructureReport& report = molecule.report;
+  std::vector<RawAtom> raw = read_raw_atoms(path, options, report);
+  const bool pqr = lower_extension(path) == ".pqr";  // PQR files give each atom's radius
+  require_chains(raw, options.chains, path);
+  auto kept_altloc = kept_alternate_locations(raw);
+  ElementRadii radii(options);
   for (auto& a : raw) {
-    if (a.altloc != 0 && a.altloc != ' ' && kept_altloc[a.residue_key] != a.altloc) {
-      ++report.alternate_locations_removed;
-      continue;
-    }
-    if (!options.chains.empty() && std::find(options.chains.begin(), options.chains.end(), a.atom.chain) == options.chains.end()) {
-      ++report.other_chains_removed;
-      continue;
-    }
-    if (a.hydrogen && !options.keep_hydrogens) {
-      ++report.hydrogens_removed;
-      continue;
-    }
-    if (a.water && !options.keep_waters) {
-      ++report.waters_removed;
-      continue;
-    }
-    if (a.atom.hetero && !a.water && !options.keep_hetero) {
-      ++report.hetero_removed;
-      continue;
-    }
-    const auto& p = a.atom.position;
-    for (double c : p) {
-      if (!std::isfinite(c) || std::abs(c) > kAbsurdCoordinate)
-        throw InputError(fmt::format("{}: atom {} ({} {}{}) has the coordinate {}, which is not a real position; fix "
-                                     "the file",
-                                     path.string(), a.atom.serial, a.atom.name, a.atom.residue_name, a.atom.residue_number, c));
-    }
-    if (!pqr) {
-      std::optional<double> radius;
-      if (options.radii) {
-        const auto it = options.radii->find(a.atom.element);
-        if (it != options.radii->end()) radius = it->second;
-      } else {
-        radius = bondi_radius(a.atom.element);
-      }
-      if (!radius) {
-        if (unknown_radius[a.atom.element].size() < 5)
-          unknown_radius[a.atom.element].push_back(
-              fmt::format("{} {} {}{}", a.atom.name, a.atom.residue_name, a.atom.chain, a.atom.residue_number));
-        else if (unknown_radius[a.atom.element].size() == 5)
-          unknown_radius[a.atom.element].push_back("...");
-        radius = kUnknownElementRadius;
-      }
-      a.atom.radius = *radius;
-    }
+    if (filtered_out(a, options, kept_altloc, report)) continue;
+    require_real_position(a, path);
+    if (!pqr) a.atom.radius = radii.radius(a.atom);
     molecule.atoms.push_back(std::move(a.atom));
   }
-  for (const auto& [element, atoms] : unknown_radius)
-    report.warnings.push_back(fmt::format("no radius for element '{}' ({}): {} Å used", element, fmt::join(atoms, "; "),
-                                          kUnknownElementRadius));
+  radii.add_warnings(report.warnings);
   if (molecule.atoms.size() < 2)
     throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
                                  "at least two. Check --chains and --model, or keep more atoms (--keep-waters, "

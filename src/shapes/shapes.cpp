@@ -163,103 +163,68 @@ Mesh perturb_vertices(const Mesh& mesh, double amplitude, std::uint32_t seed) {
   return perturbed;
 }
 
-Mesh random_edge_flips(const Mesh& mesh, double probability, std::uint32_t seed) {
-  if (!(probability >= 0 && probability <= 1))
-    throw std::invalid_argument("random_edge_flips: probability must be in [0, 1]");
-  require_valid_indices(mesh, "random_edge_flips");
+namespace {
 
-  Mesh flipped = mesh;  // vertices do not move, so attributes stay valid
-  auto& triangles = flipped.triangles;
-  const std::size_t half_edge_count = 3 * triangles.size();
-  EdgeNumbering edges = number_edges(flipped.positions.size(), triangles);
-  const std::size_t edge_count = edges.edge_endpoints.size();
-
-  // Opposite half-edges; the input must be a closed, consistently oriented edge-manifold.
-  std::vector<std::size_t> first_half_edge(edge_count, half_edge_count);
-  std::vector<std::size_t> opposite(half_edge_count, half_edge_count);
-  for (std::size_t h = 0; h < half_edge_count; ++h) {
-    const auto edge = static_cast<std::size_t>(edges.edge_of_half_edge[h]);
-    const std::size_t partner = first_half_edge[edge];
-    if (partner == half_edge_count) {
-      first_half_edge[edge] = h;
-      continue;
+// The half-edge connectivity random_edge_flips keeps up to date while it flips: opposite half-edges, one
+// half-edge per edge id, and vertex degrees.
+class FlipMesh {
+ public:
+  // Throws std::invalid_argument unless `mesh` is a closed, consistently oriented 2-manifold with one fan
+  // per vertex.
+  explicit FlipMesh(Mesh& mesh)
+      : mesh_(mesh), triangles_(mesh.triangles), half_edge_count_(3 * triangles_.size()),
+        edges_(number_edges(mesh.positions.size(), triangles_)),
+        first_half_edge_(edges_.edge_endpoints.size(), half_edge_count_), opposite_(half_edge_count_, half_edge_count_),
+        degree_(mesh.positions.size(), 0) {
+    for (std::size_t h = 0; h < half_edge_count_; ++h) {
+      const auto edge = static_cast<std::size_t>(edges_.edge_of_half_edge[h]);
+      const std::size_t partner = first_half_edge_[edge];
+      if (partner == half_edge_count_) {
+        first_half_edge_[edge] = h;
+        continue;
+      }
+      if (opposite_[partner] != half_edge_count_ || half_edge_origin(triangles_, partner) != half_edge_target(triangles_, h))
+        throw std::invalid_argument("random_edge_flips: mesh is not a consistently oriented 2-manifold");
+      opposite_[partner] = h;
+      opposite_[h] = partner;
     }
-    if (opposite[partner] != half_edge_count || half_edge_origin(triangles, partner) != half_edge_target(triangles, h))
-      throw std::invalid_argument("random_edge_flips: mesh is not a consistently oriented 2-manifold");
-    opposite[partner] = h;
-    opposite[h] = partner;
-  }
-  for (std::size_t h = 0; h < half_edge_count; ++h)
-    if (opposite[h] == half_edge_count)
-      throw std::invalid_argument("random_edge_flips: mesh is not closed (edge with a single triangle)");
-
-  std::vector<std::int32_t> degree(flipped.positions.size(), 0);
-  for (const auto& triangle : triangles)
-    for (const auto v : triangle) ++degree[v];
-  // The fan walk below is the edge-existence test, so each vertex must have one closed fan.
-  {
-    std::vector<char> walked(flipped.positions.size(), 0);
-    for (std::size_t h = 0; h < half_edge_count; ++h) {
-      const auto v = half_edge_origin(triangles, h);
-      if (walked[v]) continue;
-      walked[v] = 1;
-      std::int32_t fan_size = 0;
-      std::size_t around = h;
-      do {
-        ++fan_size;
-        around = opposite[previous_half_edge(around)];
-      } while (around != h && fan_size <= degree[v]);
-      if (fan_size != degree[v])
-        throw std::invalid_argument("random_edge_flips: vertex " + std::to_string(v) + " is not manifold (several fans)");
-    }
+    for (std::size_t h = 0; h < half_edge_count_; ++h)
+      if (opposite_[h] == half_edge_count_)
+        throw std::invalid_argument("random_edge_flips: mesh is not closed (edge with a single triangle)");
+    for (const auto& triangle : triangles_)
+      for (const auto v : triangle) ++degree_[v];
+    require_single_fans();
   }
 
-  const auto are_neighbors = [&](std::size_t half_edge_from_vertex, std::int32_t other) {
-    std::size_t around = half_edge_from_vertex;
-    do {
-      if (half_edge_target(triangles, around) == other) return true;
-      around = opposite[previous_half_edge(around)];
-    } while (around != half_edge_from_vertex);
-    return false;
-  };
-  const auto normal = [&](std::int32_t a, std::int32_t b, std::int32_t c) {
-    const auto& p = flipped.positions;
-    return cross(p[b] - p[a], p[c] - p[a]);
-  };
-  const auto link = [&](std::size_t h, std::size_t g) {
-    opposite[h] = g;
-    opposite[g] = h;
-  };
+  [[nodiscard]] std::size_t edge_count() const { return edges_.edge_endpoints.size(); }
 
-  // One random draw per original edge in edge-id order, whether or not it flips: the sequence of
-  // draws, hence the result, depends only on the seed and the input mesh.
-  std::mt19937 generator(seed);
-  for (std::size_t edge = 0; edge < edge_count; ++edge) {
-    if (uniform_unit(generator) >= probability) continue;
+  // Flips edge `edge` (ab, between (a, b, c) and (b, a, d)) to cd when that keeps the mesh simplicial
+  // (no degree below 3, no duplicate edge) and both new triangles face the way both old ones did.
+  void flip_if_allowed(std::size_t edge) {
     // The flipped edge keeps its id (it is never revisited), so first_half_edge stays a valid index.
-    const std::size_t h_ab = first_half_edge[edge];
-    const std::size_t h_ba = opposite[h_ab];
+    const std::size_t h_ab = first_half_edge_[edge];
+    const std::size_t h_ba = opposite_[h_ab];
     const std::size_t h_bc = next_half_edge(h_ab), h_ca = previous_half_edge(h_ab);
     const std::size_t h_ad = next_half_edge(h_ba), h_db = previous_half_edge(h_ba);
-    const auto a = half_edge_origin(triangles, h_ab), b = half_edge_target(triangles, h_ab);
-    const auto c = half_edge_origin(triangles, h_ca), d = half_edge_origin(triangles, h_db);
-    if (c == d || degree[a] <= 3 || degree[b] <= 3 || are_neighbors(h_ca, d)) continue;
+    const auto a = half_edge_origin(triangles_, h_ab), b = half_edge_target(triangles_, h_ab);
+    const auto c = half_edge_origin(triangles_, h_ca), d = half_edge_origin(triangles_, h_db);
+    if (c == d || degree_[a] <= 3 || degree_[b] <= 3 || are_neighbors(h_ca, d)) return;
 
     // Before: (a, b, c) and (b, a, d). After: (c, a, d) and (d, b, c), the same quad split along cd.
     const Vec3 old_normal_1 = normal(a, b, c), old_normal_2 = normal(b, a, d);
     const Vec3 new_normal_1 = normal(c, a, d), new_normal_2 = normal(d, b, c);
     if (!(dot(new_normal_1, old_normal_1) > 0 && dot(new_normal_1, old_normal_2) > 0 &&
           dot(new_normal_2, old_normal_1) > 0 && dot(new_normal_2, old_normal_2) > 0))
-      continue;
+      return;
 
-    const std::size_t outer_ca = opposite[h_ca], outer_ad = opposite[h_ad];
-    const std::size_t outer_db = opposite[h_db], outer_bc = opposite[h_bc];
-    const auto edge_ca = edges.edge_of_half_edge[h_ca], edge_ad = edges.edge_of_half_edge[h_ad];
-    const auto edge_db = edges.edge_of_half_edge[h_db], edge_bc = edges.edge_of_half_edge[h_bc];
+    const std::size_t outer_ca = opposite_[h_ca], outer_ad = opposite_[h_ad];
+    const std::size_t outer_db = opposite_[h_db], outer_bc = opposite_[h_bc];
+    const auto edge_ca = edges_.edge_of_half_edge[h_ca], edge_ad = edges_.edge_of_half_edge[h_ad];
+    const auto edge_db = edges_.edge_of_half_edge[h_db], edge_bc = edges_.edge_of_half_edge[h_bc];
 
     const std::size_t first = h_ab / 3, second = h_ba / 3;
-    triangles[first] = {c, a, d};   // half-edges: c->a, a->d, d->c
-    triangles[second] = {d, b, c};  // half-edges: d->b, b->c, c->d
+    triangles_[first] = {c, a, d};   // half-edges: c->a, a->d, d->c
+    triangles_[second] = {d, b, c};  // half-edges: d->b, b->c, c->d
     const std::size_t new_ca = 3 * first, new_ad = 3 * first + 1, new_dc = 3 * first + 2;
     const std::size_t new_db = 3 * second, new_bc = 3 * second + 1, new_cd = 3 * second + 2;
     link(new_ca, outer_ca);
@@ -267,21 +232,78 @@ Mesh random_edge_flips(const Mesh& mesh, double probability, std::uint32_t seed)
     link(new_db, outer_db);
     link(new_bc, outer_bc);
     link(new_dc, new_cd);
-    edges.edge_of_half_edge[new_ca] = edge_ca;
-    edges.edge_of_half_edge[new_ad] = edge_ad;
-    edges.edge_of_half_edge[new_db] = edge_db;
-    edges.edge_of_half_edge[new_bc] = edge_bc;
-    edges.edge_of_half_edge[new_dc] = edges.edge_of_half_edge[new_cd] = static_cast<std::int32_t>(edge);
-    first_half_edge[static_cast<std::size_t>(edge_ca)] = new_ca;
-    first_half_edge[static_cast<std::size_t>(edge_ad)] = new_ad;
-    first_half_edge[static_cast<std::size_t>(edge_db)] = new_db;
-    first_half_edge[static_cast<std::size_t>(edge_bc)] = new_bc;
-    first_half_edge[edge] = new_dc;
-    --degree[a];
-    --degree[b];
-    ++degree[c];
-    ++degree[d];
+    edges_.edge_of_half_edge[new_ca] = edge_ca;
+    edges_.edge_of_half_edge[new_ad] = edge_ad;
+    edges_.edge_of_half_edge[new_db] = edge_db;
+    edges_.edge_of_half_edge[new_bc] = edge_bc;
+    edges_.edge_of_half_edge[new_dc] = edges_.edge_of_half_edge[new_cd] = static_cast<std::int32_t>(edge);
+    first_half_edge_[static_cast<std::size_t>(edge_ca)] = new_ca;
+    first_half_edge_[static_cast<std::size_t>(edge_ad)] = new_ad;
+    first_half_edge_[static_cast<std::size_t>(edge_db)] = new_db;
+    first_half_edge_[static_cast<std::size_t>(edge_bc)] = new_bc;
+    first_half_edge_[edge] = new_dc;
+    --degree_[a];
+    --degree_[b];
+    ++degree_[c];
+    ++degree_[d];
   }
+
+ private:
+  // The fan walk of are_neighbors is the edge-existence test, so each vertex must have one closed fan.
+  void require_single_fans() const {
+    std::vector<char> walked(mesh_.positions.size(), 0);
+    for (std::size_t h = 0; h < half_edge_count_; ++h) {
+      const auto v = half_edge_origin(triangles_, h);
+      if (walked[v]) continue;
+      walked[v] = 1;
+      std::int32_t fan_size = 0;
+      std::size_t around = h;
+      do {
+        ++fan_size;
+        around = opposite_[previous_half_edge(around)];
+      } while (around != h && fan_size <= degree_[v]);
+      if (fan_size != degree_[v])
+        throw std::invalid_argument("random_edge_flips: vertex " + std::to_string(v) + " is not manifold (several fans)");
+    }
+  }
+  [[nodiscard]] bool are_neighbors(std::size_t half_edge_from_vertex, std::int32_t other) const {
+    std::size_t around = half_edge_from_vertex;
+    do {
+      if (half_edge_target(triangles_, around) == other) return true;
+      around = opposite_[previous_half_edge(around)];
+    } while (around != half_edge_from_vertex);
+    return false;
+  }
+  [[nodiscard]] Vec3 normal(std::int32_t a, std::int32_t b, std::int32_t c) const {
+    const auto& p = mesh_.positions;
+    return cross(p[b] - p[a], p[c] - p[a]);
+  }
+  void link(std::size_t h, std::size_t g) {
+    opposite_[h] = g;
+    opposite_[g] = h;
+  }
+
+  Mesh& mesh_;
+  std::vector<Triangle>& triangles_;
+  std::size_t half_edge_count_;
+  EdgeNumbering edges_;
+  std::vector<std::size_t> first_half_edge_, opposite_;
+  std::vector<std::int32_t> degree_;
+};
+
+}  // namespace
+
+Mesh random_edge_flips(const Mesh& mesh, double probability, std::uint32_t seed) {
+  if (!(probability >= 0 && probability <= 1))
+    throw std::invalid_argument("random_edge_flips: probability must be in [0, 1]");
+  require_valid_indices(mesh, "random_edge_flips");
+  Mesh flipped = mesh;  // vertices do not move, so attributes stay valid
+  FlipMesh flips(flipped);
+  // One random draw per original edge in edge-id order, whether or not it flips: the sequence of
+  // draws, hence the result, depends only on the seed and the input mesh.
+  std::mt19937 generator(seed);
+  for (std::size_t edge = 0; edge < flips.edge_count(); ++edge)
+    if (uniform_unit(generator) < probability) flips.flip_if_allowed(edge);
   return flipped;
 }
 

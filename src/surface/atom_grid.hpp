@@ -9,14 +9,9 @@
 
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/molecule/structure.hpp"
+#include "../util/rounding.hpp"
 
 namespace spheremap::detail {
-
-/// std::floor as an integer, for |x| < 2^62, without a libm call (no SSE4.1 rounding in a default build).
-inline std::int64_t floor_to_int(double x) {
-  const auto t = static_cast<std::int64_t>(x);
-  return static_cast<double>(t) > x ? t - 1 : t;
-}
 
 /// An atom's sphere, copied out of Atom (whose strings would spread the centres over memory).
 struct Sphere {

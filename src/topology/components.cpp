@@ -5,30 +5,19 @@
 #include <utility>
 
 #include "spheremap/geometry/vec.hpp"
+#include "../util/union_find.hpp"
 
 namespace spheremap {
-namespace {
-
-std::int32_t find_root(std::vector<std::int32_t>& parent, std::int32_t v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
-}  // namespace
 
 std::vector<MeshComponent> mesh_components(const Mesh& mesh) {
   const auto n = static_cast<std::int32_t>(mesh.positions.size());
-  std::vector<std::int32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  detail::UnionFind<std::int32_t> sets(mesh.positions.size());
   for (const auto& t : mesh.triangles)
-    for (int k = 1; k < 3; ++k) {
-      const auto a = find_root(parent, t[0]), b = find_root(parent, t[k]);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
+    for (int k = 1; k < 3; ++k) sets.join(t[0], t[k]);
   std::vector<std::int32_t> component_of_root(n, -1);
   std::vector<MeshComponent> components;
   for (std::int32_t t = 0; t < static_cast<std::int32_t>(mesh.triangles.size()); ++t) {
-    const auto root = find_root(parent, mesh.triangles[t][0]);
+    const auto root = sets.find(mesh.triangles[t][0]);
     if (component_of_root[root] < 0) {
       component_of_root[root] = static_cast<std::int32_t>(components.size());
       components.emplace_back();
@@ -43,7 +32,7 @@ std::vector<MeshComponent> mesh_components(const Mesh& mesh) {
   // Vertices per component, for the Euler characteristic; a closed 2-manifold has E = 3F/2.
   std::vector<std::int64_t> vertex_count(components.size(), 0);
   for (std::int32_t v = 0; v < n; ++v)
-    if (component_of_root[find_root(parent, v)] >= 0) ++vertex_count[component_of_root[find_root(parent, v)]];
+    if (component_of_root[sets.find(v)] >= 0) ++vertex_count[component_of_root[sets.find(v)]];
   for (std::size_t c = 0; c < components.size(); ++c) {
     auto& component = components[c];
     component.vertices = vertex_count[c];

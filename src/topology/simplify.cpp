@@ -433,8 +433,6 @@ class Surface {
   // collapsed in whichever allowed direction makes the better-shaped triangles. Returns the number of
   // collapses.
   std::int64_t collapse_round() {
-    constexpr int kClasses = 16;
-    constexpr std::int32_t kBlockTriangles = 1 << 14;
     const double low = options_.target_edge_length * 4 / 5, low_squared = low * low;
     // Two zones, split at the median x of the vertices, are worked on at once (each by its own thread
     // when there are two); whatever would touch both waits for a serial pass afterwards. Each zone's
@@ -442,18 +440,45 @@ class Surface {
     // the result is the same in whatever order, or on however many threads, the zones run. (Zones first:
     // the median's scratch is gone before the candidates take their memory.)
     assign_zones();
-    // Shortest first within blocks of consecutive triangles (2^14: a compact piece of the mesh, whose
-    // data stay in cache), by classes of lengths within a factor 2^(1/4) of each other, and in triangle
-    // order within a class. A global sort by length would visit the mesh at random and spend its time
-    // in cache misses; a global sweep per class would stream the whole mesh 16 times. A block's
-    // candidates are sorted as soon as it is read, so only their vertices are kept, not their lengths.
-    // The length goes through float as when candidates kept it, so that the classes stay the same.
+    const auto candidate_groups = collapse_candidates(low_squared);
+    std::array<Workspace, 2> zone_work;
+    collapse_in_zones(candidate_groups, low_squared, zone_work);
+    std::int64_t collapses = 0;
+    auto count_removed = [&](Workspace& w) {
+      for (const auto u : w.removed) --component_size_[component_[u]];
+      collapses += static_cast<std::int64_t>(w.removed.size());
+      w.removed.clear();
+    };
+    count_removed(zone_work[0]);
+    count_removed(zone_work[1]);
+    // The deferred candidates: zone 0's, then zone 1's, each in the order they were met.
+    auto& deferred = zone_work[0].deferred;
+    deferred.insert(deferred.end(), zone_work[1].deferred.begin(), zone_work[1].deferred.end());
+    auto& serial = zone_work[0];
+    for (const auto& c : deferred) {
+      if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
+      const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
+      if (try_collapse(c.a, c.b, !short_edge, serial, -1) == Outcome::kCollapsed) count_removed(serial);
+    }
+    return collapses;
+  }
+
+  // The candidate edges of a collapse round, shortest first within blocks of consecutive triangles
+  // (2^14: a compact piece of the mesh, whose data stay in cache), by classes of lengths within a factor
+  // 2^(1/4) of each other, and in triangle order within a class. A global sort by length would visit the
+  // mesh at random and spend its time in cache misses; a global sweep per class would stream the whole
+  // mesh 16 times. A block's candidates are sorted as soon as it is read, so only their vertices are
+  // kept, not their lengths. The length goes through float as when candidates kept it, so that the
+  // classes stay the same. Blocks are read in groups of kBlocksPerGroup on every thread, each group's
+  // candidates in a list of its own: the lists, in group order, are what one thread reading the blocks in
+  // order would make.
+  std::vector<std::vector<Candidate>> collapse_candidates(double low_squared) const {
+    constexpr int kClasses = 16;
+    constexpr std::int32_t kBlockTriangles = 1 << 14;
     auto length_class = [&](double squared_length) {
       const double ratio = std::min(1.0, static_cast<double>(static_cast<float>(squared_length)) / low_squared);
       return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
     };
-    // Blocks are read in groups of kBlocksPerGroup on every thread, each group's candidates in a list of
-    // its own: the lists, in group order, are what one thread reading the blocks in order would make.
     constexpr std::int32_t kBlocksPerGroup = 16;
     const auto triangle_count = static_cast<std::int32_t>(tri_.size());
     const std::int64_t blocks = (static_cast<std::int64_t>(triangle_count) + kBlockTriangles - 1) / kBlockTriangles;
@@ -488,7 +513,13 @@ class Surface {
         for (const auto& [length, edge] : block) candidates[offset + start[length]++] = edge;
       }
     });
-    std::array<Workspace, 2> zone_work;
+    return candidate_groups;
+  }
+
+  // The parallel pass of a collapse round: each zone's candidates (both ends in the zone) collapsed by the
+  // zone's own thread; the others deferred to zone_work[z].deferred.
+  void collapse_in_zones(const std::vector<std::vector<Candidate>>& candidate_groups, double low_squared,
+                         std::array<Workspace, 2>& zone_work) {
     for (auto& w : zone_work) w.removed_in.assign(component_size_.size(), 0);
     auto run_zone = [&](int zone) {
       auto& w = zone_work[static_cast<std::size_t>(zone)];
@@ -521,24 +552,6 @@ class Surface {
       run_zone(0);
       run_zone(1);
     }
-    std::int64_t collapses = 0;
-    auto count_removed = [&](Workspace& w) {
-      for (const auto u : w.removed) --component_size_[component_[u]];
-      collapses += static_cast<std::int64_t>(w.removed.size());
-      w.removed.clear();
-    };
-    count_removed(zone_work[0]);
-    count_removed(zone_work[1]);
-    // The deferred candidates: zone 0's, then zone 1's, each in the order they were met.
-    auto& deferred = zone_work[0].deferred;
-    deferred.insert(deferred.end(), zone_work[1].deferred.begin(), zone_work[1].deferred.end());
-    auto& serial = zone_work[0];
-    for (const auto& c : deferred) {
-      if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
-      const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
-      if (try_collapse(c.a, c.b, !short_edge, serial, -1) == Outcome::kCollapsed) count_removed(serial);
-    }
-    return collapses;
   }
 
   // zone_[v] for the alive vertices (0 or 1 by x against the median), and how many vertices of each
