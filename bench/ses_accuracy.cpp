@@ -9,15 +9,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <map>
-#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "spheremap/geometry/vec.hpp"
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/surface/ses.hpp"
+#include "spheremap/topology/components.hpp"
 
 namespace {
 
@@ -45,39 +43,6 @@ double cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-struct Outer {
-  double area = 0, volume = 0;
-  int genus = 0;
-  std::size_t components = 0;
-};
-
-// Components by shared vertices; the outer surface is the one with the largest area.
-Outer outer_of(const spheremap::Mesh& mesh) {
-  std::vector<std::int32_t> parent(mesh.vertex_count());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
-  std::map<std::int32_t, std::array<double, 3>> parts;  // area, volume, triangles
-  for (const auto& t : mesh.triangles) {
-    const auto &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    auto& part = parts[find(t[0])];
-    part[0] += spheremap::triangle_area(a, b, c);
-    part[1] += spheremap::dot(a, spheremap::cross(b, c)) / 6;
-    part[2] += 1;
-  }
-  std::int32_t outer = parts.begin()->first;
-  for (const auto& [root, part] : parts)
-    if (part[0] > parts[outer][0]) outer = root;
-  std::int64_t vertices = 0;
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) vertices += find(static_cast<std::int32_t>(v)) == outer;
-  const double faces = parts[outer][2];
-  const double euler = static_cast<double>(vertices) - faces / 2;
-  return {parts[outer][0], parts[outer][1], static_cast<int>((2 - euler) / 2), parts.size()};
 }
 
 }  // namespace
@@ -118,14 +83,15 @@ int main(int argc, char** argv) {
           const double start = cpu_seconds();
           const auto mesh = spheremap::solvent_excluded_surface(molecule.atoms, options);
           const double cpu = cpu_seconds() - start;
-          const Outer outer = outer_of(mesh);
+          const auto components = spheremap::mesh_components(mesh);  // the outer surface first (largest area)
+          const auto& outer = components.front();
           const double msms = probe == 1.4 ? reference.area14 : probe == 1.8 ? reference.area18 : 0;
           const double msms_volume = probe == 1.4 ? reference.volume14 : 0;
           char area_pct[16] = "-", volume_pct[16] = "-";
           if (msms > 0) std::snprintf(area_pct, sizeof area_pct, "%+.2f%%", 100 * (outer.area / msms - 1));
-          if (msms_volume > 0) std::snprintf(volume_pct, sizeof volume_pct, "%+.2f%%", 100 * (outer.volume / msms_volume - 1));
+          if (msms_volume > 0) std::snprintf(volume_pct, sizeof volume_pct, "%+.2f%%", 100 * (outer.signed_volume / msms_volume - 1));
           std::printf("%-5s %5.3g %5.2g %5.2g %10.1f %8s %10.1f %8s %5zu %5d %8.3f\n", reference.name, grid, probe, clamp, outer.area,
-                      area_pct, outer.volume, volume_pct, outer.components, outer.genus, cpu);
+                      area_pct, outer.signed_volume, volume_pct, components.size(), outer.genus, cpu);
           std::fflush(stdout);
         }
   }

@@ -8,12 +8,10 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <map>
-#include <numeric>
 
-#include "spheremap/geometry/vec.hpp"
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/surface/ses.hpp"
+#include "spheremap/topology/components.hpp"
 
 namespace {
 
@@ -45,39 +43,18 @@ void BM_Surface(benchmark::State& state) {
   if (const char* threads = std::getenv("SPHEREMAP_THREADS")) options.threads = std::atoi(threads);
   spheremap::Mesh mesh;
   for (auto _ : state) mesh = spheremap::solvent_excluded_surface(molecule.atoms, options);
-  // Components by shared vertices; the outer surface is the one with the largest area.
-  std::vector<std::int32_t> parent(mesh.vertex_count());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
-  std::map<std::int32_t, std::array<double, 3>> parts;  // area, volume, triangles
-  for (const auto& t : mesh.triangles) {
-    const auto &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    auto& part = parts[find(t[0])];
-    part[0] += spheremap::triangle_area(a, b, c);
-    part[1] += spheremap::dot(a, spheremap::cross(b, c)) / 6;
-    part[2] += 1;
-  }
-  std::int32_t outer = parts.begin()->first;
-  for (const auto& [root, part] : parts)
-    if (part[0] > parts[outer][0]) outer = root;
-  std::int64_t outer_vertices = 0;
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) outer_vertices += find(static_cast<std::int32_t>(v)) == outer;
-  const double faces = parts[outer][2];
-  const double euler = static_cast<double>(outer_vertices) - faces * 1.5 + faces;
+  const auto components = spheremap::mesh_components(mesh);  // the outer surface first (largest area)
+  const auto& outer = components.front();
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   state.counters["atoms"] = static_cast<double>(molecule.atoms.size());
   state.counters["triangles"] = static_cast<double>(mesh.triangle_count());
-  state.counters["components"] = static_cast<double>(parts.size());
-  state.counters["outer_genus"] = (2 - euler) / 2;
-  state.counters["outer_area"] = parts[outer][0];
-  if (reference.msms_area > 0) state.counters["area_vs_msms_pct"] = 100 * (parts[outer][0] / reference.msms_area - 1);
-  state.counters["outer_volume"] = parts[outer][1];
-  if (reference.msms_volume > 0) state.counters["volume_vs_msms_pct"] = 100 * (parts[outer][1] / reference.msms_volume - 1);
+  state.counters["components"] = static_cast<double>(components.size());
+  state.counters["outer_genus"] = outer.genus;
+  state.counters["outer_area"] = outer.area;
+  if (reference.msms_area > 0) state.counters["area_vs_msms_pct"] = 100 * (outer.area / reference.msms_area - 1);
+  state.counters["outer_volume"] = outer.signed_volume;
+  if (reference.msms_volume > 0) state.counters["volume_vs_msms_pct"] = 100 * (outer.signed_volume / reference.msms_volume - 1);
   state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
   state.SetLabel(reference.file);
 }

@@ -177,7 +177,7 @@ std::vector<std::int32_t> nested_dissection_order(const Eigen::SparseMatrix<doub
 }
 
 // Debian's CHOLMOD opens an OpenMP parallel region (with a fixed thread count that OMP_NUM_THREADS does
-// not lower) for every supernode: on a 400k-vertex surface that is 170,000 thread wake-ups, 30% of the
+// not lower) for every supernode: a thread wake-up per supernode costs a large share of the
 // factorization's wall time, and a second busy core that a parallel batch needs. No active parallel
 // level makes every such region run on the calling thread. We use no OpenMP ourselves. (libgomp still
 // makes a team of one and a barrier system call per region: the command and the benchmarks link
@@ -239,8 +239,7 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
     if (!problem.fixed[v]) unknown_positions[unknown_index[v]] = (*problem.positions)[v];
   const Eigen::SparseMatrix<double> matrix = problem_matrix(problem, unknown_index, unknowns);
   // Fill-reducing order of our own (geometric nested dissection): CHOLMOD's default search tries
-  // several orderings (27 s for one 100k-vertex factorization measured here) and plain AMD fills 2-4x
-  // more on smooth surface meshes (on molecular surfaces it fills less: map_to_sphere chooses between the
+  // several orderings (far slower than the factorization) and plain AMD fills more on smooth surface meshes (on molecular surfaces it fills less: map_to_sphere chooses between the
   // two through ReusableCholesky, which this one-off solve does not). The lower triangle is written
   // column by column in that order, directly in CHOLMOD's format, and factorized in natural order.
   const auto order = nested_dissection_order(matrix, unknown_positions);  // order[k]: unknown at row k
@@ -480,9 +479,8 @@ void ReusableCholesky::analyse(const VertexRings& rings, std::vector<std::int32_
   column_start[unknowns] = static_cast<int>(next);
   // CHOLMOD postorders the elimination tree by default, which can move `last` away from the end (the
   // fill is the same either way). METIS's orders come postordered by cholmod_metis (without that, their
-  // factorizations took 3x as long on a 78k-vertex molecular surface), AMD's by AMD itself (it ends with
-  // a postorder of its assembly tree); the geometric one is left as it is
-  // (CHOLMOD's postorder made it faster there but slower on a subdivided cube).
+  // factorizations are much slower), AMD's by AMD itself (it ends with a postorder of its assembly tree);
+  // the geometric one is left as it is (CHOLMOD's postorder does not help it on every mesh).
   s.cholmod.common.postorder = false;
   s.cholmod.factor = cholmod_analyze(s.lower, &s.cholmod.common);
   if (!s.cholmod.factor || s.cholmod.common.status != CHOLMOD_OK)

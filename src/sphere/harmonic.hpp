@@ -50,24 +50,23 @@ struct EliminationOrder {
 };
 
 /// Geometric nested dissection: split at the median of the longest bounding-box axis, the vertices of
-/// one half touching the other as separator, recursively. Cheap (a few ms per 10k vertices) and the best
-/// on smooth, convex-ish shapes (a subdivided cube), but a plane cuts a convoluted surface along long
-/// curves: on molecular surfaces its factor needs 5-24x the flops of AMD's or METIS's.
+/// one half touching the other as separator, recursively. Cheap and the best on smooth, convex-ish shapes
+/// (a subdivided cube), but a plane cuts a convoluted surface along long curves: on molecular surfaces its
+/// factor needs several times the flops of AMD's or METIS's.
 /// Preconditions: always_fixed.size() == positions.size() == rings.vertex_count().
 EliminationOrder geometric_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                              const std::vector<char>& always_fixed);
 
 /// Approximate minimum degree (CHOLMOD's AMD on the symmetric pattern): about as cheap to compute as the
-/// geometric order (0.05 s for 78k vertices, 0.8 s for 480k on the project's AMD EPYC machine) and within
-/// 1.2-1.8x of METIS's flops on molecular surfaces, with factorizations as fast; 1.7x the geometric
-/// order's flops on a subdivided cube. Deterministic. Returns the geometric order if AMD fails.
+/// geometric order and close to METIS's flops on molecular surfaces; more flops than the geometric order
+/// on smooth shapes. Deterministic. Returns the geometric order if AMD fails.
 EliminationOrder amd_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                        const std::vector<char>& always_fixed);
 
-/// METIS's nested dissection (METIS_NodeND through CHOLMOD), postordered: the fewest flops on every mesh
-/// measured, but 4-7 µs per vertex to compute (0.48 s for 78k vertices, 2.9 s for 480k), which its
-/// factorizations did not win back against AMD's on any molecular surface measured; kept for the
-/// benchmarks and tests. Deterministic (METIS's fixed seed). Returns the geometric order if METIS fails.
+/// METIS's nested dissection (METIS_NodeND through CHOLMOD), postordered: the fewest flops, but several
+/// times dearer to compute than AMD's, which its factorizations do not win back on molecular surfaces
+/// (BENCHMARKS.md); kept for the benchmarks and tests. Deterministic (METIS's fixed seed). Returns the
+/// geometric order if METIS fails.
 EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                          const std::vector<char>& always_fixed);
 

@@ -156,7 +156,7 @@ std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& pos
   // The relative margin covers the rounding of the radii and of the square root.
   auto beyond_reach = [&](std::int32_t i) { return (radius[i] + largest_radius) * (1 + 1e-12) < std::sqrt(best); };
   // best only grows, so a point beyond reach now stays so: only the others are put in order (on a
-  // cube's 681k vertices, its corners only).
+  // cube, its corners only).
   std::vector<std::int32_t> outside_in;
   for (std::int32_t i = 0; i < n; ++i)
     if (!beyond_reach(i)) outside_in.push_back(i);

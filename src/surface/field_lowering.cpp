@@ -34,18 +34,22 @@ inline void lower_row(T* values, std::int32_t length, T across, T start) {
 using Floats = float __attribute__((vector_size(16)));
 using Ints = std::int32_t __attribute__((vector_size(16)));
 
-// Vectors [0, vectors) of a padded row, unrolled.
-template <int vectors>
-inline void lower_vectors(float* values, Floats m, Floats end, Floats a, Floats s) {
-  const Floats four = {4, 4, 4, 4};
-  for (int q = 0; q < vectors; ++q, m += four) {
-    Floats old;
-    std::memcpy(&old, values + 4 * q, sizeof old);
-    const Floats dx = m + s;
-    const Floats value = a + dx * dx;
-    const Ints take = (value < old) & (m < end);
-    const Floats out = reinterpret_cast<Floats>((reinterpret_cast<Ints>(value) & take) | (reinterpret_cast<Ints>(old) & ~take));
-    std::memcpy(values + 4 * q, &out, sizeof out);
+// Vectors [0, vectors) of a padded row (FloatVector: 4 or 8 floats, IntVector the same lanes of int32),
+// unrolled; always inlined, so that in a function compiled for AVX2 it uses AVX2's 256-bit operations.
+template <typename FloatVector, typename IntVector, int vectors>
+[[gnu::always_inline]] inline void lower_vectors(float* values, FloatVector m, FloatVector end, FloatVector a,
+                                                 FloatVector s) {
+  constexpr int kLanes = sizeof(FloatVector) / sizeof(float);
+  const FloatVector step = FloatVector{} + static_cast<float>(kLanes);
+  for (int q = 0; q < vectors; ++q, m += step) {
+    FloatVector old;
+    std::memcpy(&old, values + kLanes * q, sizeof old);
+    const FloatVector dx = m + s;
+    const FloatVector value = a + dx * dx;
+    const IntVector take = (value < old) & (m < end);
+    const FloatVector out =
+        reinterpret_cast<FloatVector>((reinterpret_cast<IntVector>(value) & take) | (reinterpret_cast<IntVector>(old) & ~take));
+    std::memcpy(values + kLanes * q, &out, sizeof out);
   }
 }
 #endif
@@ -56,11 +60,11 @@ inline void lower_row_padded(float* values, std::int32_t padded, std::int32_t le
   const auto last = static_cast<float>(length);
   const Floats end = {last, last, last, last}, a = {across, across, across, across}, s = {start, start, start, start};
   switch (padded / 4) {
-    case 1: return lower_vectors<1>(values, m, end, a, s);
-    case 2: return lower_vectors<2>(values, m, end, a, s);
-    case 3: return lower_vectors<3>(values, m, end, a, s);
-    case 4: return lower_vectors<4>(values, m, end, a, s);
-    case 5: return lower_vectors<5>(values, m, end, a, s);
+    case 1: return lower_vectors<Floats, Ints, 1>(values, m, end, a, s);
+    case 2: return lower_vectors<Floats, Ints, 2>(values, m, end, a, s);
+    case 3: return lower_vectors<Floats, Ints, 3>(values, m, end, a, s);
+    case 4: return lower_vectors<Floats, Ints, 4>(values, m, end, a, s);
+    case 5: return lower_vectors<Floats, Ints, 5>(values, m, end, a, s);
     default: break;
   }
   (void)padded;
@@ -79,20 +83,6 @@ inline void lower_row_padded(double* values, std::int32_t, std::int32_t length, 
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = std::int32_t __attribute__((vector_size(32)));
 
-template <int vectors>
-[[gnu::always_inline]] inline void lower_vectors8(float* values, Floats8 m, Floats8 end, Floats8 a, Floats8 s) {
-  const Floats8 eight = {8, 8, 8, 8, 8, 8, 8, 8};
-  for (int q = 0; q < vectors; ++q, m += eight) {
-    Floats8 old;
-    std::memcpy(&old, values + 8 * q, sizeof old);
-    const Floats8 dx = m + s;
-    const Floats8 value = a + dx * dx;
-    const Ints8 take = (value < old) & (m < end);
-    const Floats8 out = reinterpret_cast<Floats8>((reinterpret_cast<Ints8>(value) & take) | (reinterpret_cast<Ints8>(old) & ~take));
-    std::memcpy(values + 8 * q, &out, sizeof out);
-  }
-}
-
 [[gnu::always_inline]] inline void lower_row_padded8(float* values, std::int32_t padded, std::int32_t length, float across, float start) {
   const Floats8 m = {0, 1, 2, 3, 4, 5, 6, 7};
   const auto last = static_cast<float>(length);
@@ -100,9 +90,9 @@ template <int vectors>
   const Floats8 a = {across, across, across, across, across, across, across, across};
   const Floats8 s = {start, start, start, start, start, start, start, start};
   switch (padded / 8) {
-    case 1: return lower_vectors8<1>(values, m, end, a, s);
-    case 2: return lower_vectors8<2>(values, m, end, a, s);
-    case 3: return lower_vectors8<3>(values, m, end, a, s);
+    case 1: return lower_vectors<Floats8, Ints8, 1>(values, m, end, a, s);
+    case 2: return lower_vectors<Floats8, Ints8, 2>(values, m, end, a, s);
+    case 3: return lower_vectors<Floats8, Ints8, 3>(values, m, end, a, s);
     default: break;
   }
   lower_row(values, length, across, start);

@@ -84,8 +84,8 @@ double worst_corner_cosine(const Vec3& a, const Vec3& b, const Vec3& c) {
 // tri[t][k+1]; opp[h] is the half-edge running the other way in the neighbouring triangle.
 class Surface {
  public:
-  // An edge to try to collapse; a < b unless it comes from a sliver. 8 bytes: at 0.25 Å a first round has
-  // 70M of them.
+  // An edge to try to collapse; a < b unless it comes from a sliver. 8 bytes: a first round on a fine
+  // molecular surface has tens of millions of them.
   struct Candidate {
     std::int32_t a, b;
   };

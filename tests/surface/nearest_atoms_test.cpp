@@ -8,19 +8,12 @@
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/surface/nearest_atoms.hpp"
+#include "test_atoms.hpp"
 
 namespace spheremap {
 namespace {
 
-Atom atom_at(const Vec3& p, double radius, int serial) {
-  Atom a;
-  a.position = p;
-  a.radius = radius;
-  a.serial = serial;
-  a.residue_number = serial / 10;
-  a.model = 1 + serial % 2;
-  return a;
-}
+using testing_support::atom_at;
 
 // Smallest |p - centre| - radius, ties to the smallest index: the definition, by brute force.
 std::int32_t brute_nearest(const Vec3& p, const std::vector<Atom>& atoms) {

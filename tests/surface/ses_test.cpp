@@ -6,25 +6,19 @@
 
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <numbers>
 #include <algorithm>
 
 #include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/topology/components.hpp"
+#include "test_atoms.hpp"
 
 namespace spheremap {
 namespace {
 
-Atom atom_at(const Vec3& p, double radius, int serial) {
-  Atom a;
-  a.position = p;
-  a.radius = radius;
-  a.serial = serial;
-  a.element = "C";
-  return a;
-}
+using testing_support::atom_at;
 
 double area_of(const Mesh& mesh) {
   double area = 0;
@@ -116,25 +110,10 @@ TEST(Ses, RefusesAGridBeyondTheMemoryBudgetAndSaysWhichSpacingFits) {
   }
 }
 
-// Connected components by shared vertices: (area, signed volume) of each, largest area first.
+// (area, signed volume) of each connected component, largest area first.
 std::vector<std::pair<double, double>> components_of(const Mesh& mesh) {
-  std::vector<std::int32_t> parent(mesh.vertex_count());
-  for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<std::int32_t>(v);
-  auto find = [&](std::int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
-  std::map<std::int32_t, std::pair<double, double>> parts;
-  for (const auto& t : mesh.triangles) {
-    const auto &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    auto& part = parts[find(t[0])];
-    part.first += triangle_area(a, b, c);
-    part.second += dot(a, cross(b, c)) / 6;
-  }
   std::vector<std::pair<double, double>> out;
-  for (const auto& [root, part] : parts) out.push_back(part);
-  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  for (const auto& c : mesh_components(mesh)) out.emplace_back(c.area, c.signed_volume);
   return out;
 }
 

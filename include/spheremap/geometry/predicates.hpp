@@ -13,6 +13,7 @@ namespace spheremap {
 int orientation_sign(const Vec3& a, const Vec3& b, const Vec3& c, bool* decided_exactly = nullptr);
 
 /// Sign of the 2D orientation of (a, b, c): +1 counter-clockwise, -1 clockwise, 0 collinear; exact.
+/// Precondition: all coordinates finite. Never throws.
 int orientation_sign_2d(double ax, double ay, double bx, double by, double cx, double cy);
 
 }  // namespace spheremap

@@ -1,4 +1,4 @@
-// Small vector helpers on Vec3; header-only because they sit in every inner loop.
+// Small vector helpers on Vec3; header-only because they sit in every inner loop. None of them throws.
 #pragma once
 
 #include <cmath>
@@ -16,6 +16,7 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline double squared_distance(const Vec3& a, const Vec3& b) { return dot(a - b, a - b); }
+/// a / |a|; the zero vector stays zero.
 inline Vec3 normalized(const Vec3& a) {
   const double n = norm(a);
   return n > 0 ? (1.0 / n) * a : a;

@@ -41,6 +41,7 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
                                double collapse_floor = kDefaultCollapseFloor, std::vector<double>* solid_angles = nullptr);
 
 /// Signed solid angle of the spherical triangle abc (unit vectors), Van Oosterom & Strackee 1983.
+/// Never throws.
 double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace spheremap

@@ -153,6 +153,7 @@ struct SphereMap {
 SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options = {});
 
 /// The names report.json and the command line use (e.g. "mean-value", "direct", "poles-and-rings").
+/// Never throw.
 const char* to_string(Weights weights);
 const char* to_string(Solver solver);
 const char* to_string(MapMethod method);

@@ -8,9 +8,8 @@ namespace spheremap {
 
 /// Default of contour_isosurface's `minimum_fraction`: where the surface passes within this fraction of a
 /// step of a sample, its vertex is kept at this fraction. Vertices closer to a sample make sliver
-/// triangles of almost no area, whose area ratios dominate any distortion statistic of a map (1crn at
-/// 0.5 Å: mean area distortion of its map 339,424% with 1e-6, 260% with 0.1). The shift is at most a
-/// tenth of a step; it biases areas upwards (see BENCHMARKS.md, "Solvent-excluded surface").
+/// triangles of almost no area, whose area ratios dominate any distortion statistic of a map. The shift
+/// is at most a tenth of a step; it biases areas upwards (see BENCHMARKS.md, "Solvent-excluded surface").
 inline constexpr double kContourMinimumFraction = 0.1;
 
 /// The surface field == level of the piecewise-linear interpolant of `field` on the Freudenthal

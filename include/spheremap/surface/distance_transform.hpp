@@ -19,6 +19,7 @@ Grid3<double> squared_distance_transform(const Grid3<std::uint8_t>& is_target, i
 /// +infinity elsewhere this is squared_distance_transform without a second grid. Lines are computed in
 /// double; with T = float the result is exact as long as the squared distances are integers below 2^24
 /// (a 0/infinity start on grids up to 4096 samples per axis). Precondition: values.size() == count().
+/// Both throw nothing beyond std::bad_alloc.
 template <typename T>
 void squared_distance_transform_in_place(Grid3<T>& grid, int threads = 0);
 

@@ -33,27 +33,19 @@ struct SurfaceOptions {
   /// Threads for the surface stage (0: one per hardware thread). Results do not depend on it.
   int threads = 0;
   /// Let the single-precision field use AVX2 instructions where the processor has them (eight samples
-  /// per operation, about 40 ms of 1.7 s for 8.7k atoms at 0.25 Å). Results do not depend on it; false
-  /// is there to test that.
+  /// per operation). Results do not depend on it; false is there to test that.
   bool use_avx2 = true;
 };
 
-/// Samples g(x) = (distance from x to the nearest valid probe centre) - probe, where valid probe centres
-/// are the points outside every atom's sphere enlarged by the probe (outside the SAS) that a probe can
-/// reach from outside the molecule (with carve_cavities: also those in enclosed pockets). The SES
-/// encloses g > 0. Probe centres are the grid samples outside the SAS that the probe reaches (exact
-/// Euclidean distance transform), plus exact points of the SAS surface: radial projections of samples
-/// just inside each enlarged sphere (next to a reached sample), samples (every half grid step) of the
-/// exposed arcs of the circles where two enlarged spheres meet, and the vertices where three meet (probe
-/// positions touching three atoms, the deepest of a crevice), which keep re-entrant regions accurate
-/// below the grid spacing; each such point lowers g within probe + sqrt(3) steps of it, so g is
-/// exact (for this set of centres) wherever |g| < sqrt(3) steps, i.e. at both ends of every lattice edge
-/// the surface crosses. Reachability is decided as a probe rolling on the SAS would (as MSMS does): the
-/// grid samples joined to the grid border through the lattice, plus every pocket of samples and every
-/// exposed arc joined to them through the SAS's edges (exposed arcs, computed exactly and joined at the
-/// vertices where three enlarged spheres meet) or through segments outside every enlarged sphere, so
-/// channels narrower than a grid step are passed. Multithreaded (options.threads); the result is the
-/// same for any number of threads.
+/// Samples g(x) = (distance from x to the nearest valid probe centre) - probe on a grid around the atoms;
+/// the SES encloses g > 0. Valid probe centres are the points outside the SAS (every atom's sphere
+/// enlarged by the probe) that a probe rolling on the SAS reaches from outside the molecule, as MSMS
+/// decides (with carve_cavities also those in enclosed pockets): the grid samples so reached, plus exact
+/// points of the SAS surface, which keep re-entrant regions accurate below the grid spacing and let
+/// channels narrower than a step through. g is exact (for those centres) wherever |g| < sqrt(3) steps,
+/// i.e. at both ends of every lattice edge the surface crosses. Multithreaded (options.threads); the
+/// result is the same for any number of threads.
+/// Preconditions: options.grid > 0, options.probe >= 0, finite atom positions.
 /// Throws InputError if there are no atoms, a radius is not positive, or the grid would exceed
 /// options.max_grid_bytes (the message says how much it needs and which spacing fits).
 Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const SurfaceOptions& options);
@@ -61,7 +53,7 @@ Grid3<double> solvent_excluded_field(const std::vector<Atom>& atoms, const Surfa
 /// The same field in single precision: half the memory. Values differ from solvent_excluded_field by
 /// float rounding (about 1e-7 Å), which moves contour vertices by about 1e-5 of a step (at most 1e-4 in
 /// the tests) and leaves the classification of samples, hence the mesh's connectivity, the same except
-/// for samples within about 1e-7 Å of the surface.
+/// for samples within about 1e-7 Å of the surface. Preconditions and throws as solvent_excluded_field.
 Grid3<float> solvent_excluded_field_float(const std::vector<Atom>& atoms, const SurfaceOptions& options);
 
 /// The SES as a closed, outward-oriented 2-manifold (possibly several components: detached pieces,
@@ -70,12 +62,14 @@ Grid3<float> solvent_excluded_field_float(const std::vector<Atom>& atoms, const 
 /// vertex is the one whose van der Waals sphere is nearest (smallest |x - centre| - radius, ties to the
 /// smallest index). Uses the single-precision field, freed before provenance is added: peak memory is
 /// about 4 bytes per grid sample plus 24 bytes per triangle (positions and triangles; the provenance
-/// attributes, 8 bytes per triangle, come after the field is freed). 1aon (58.9k atoms) at 0.25 Å:
-/// 1.2 GB of grid, 44M triangles, 2.3 GB peak.
+/// attributes, 8 bytes per triangle, come after the field is freed).
+/// Preconditions and throws as solvent_excluded_field.
 Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptions& options);
 
 /// The contour g = 0 of a field from solvent_excluded_field (possibly repaired by cut_handles), with the
 /// same provenance attributes as solvent_excluded_surface.
+/// Preconditions: `field` was built from `atoms` (every sample of its outer layer outside).
+/// Throws std::invalid_argument as contour_isosurface does.
 Mesh surface_from_field(const Grid3<double>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options);
 Mesh surface_from_field(const Grid3<float>& field, const std::vector<Atom>& atoms, const SurfaceOptions& options);
 

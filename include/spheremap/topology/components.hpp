@@ -25,6 +25,7 @@ struct MeshComponent {
 std::vector<MeshComponent> mesh_components(const Mesh& mesh);
 
 /// The sub-mesh of one component: its vertices (in ascending original order) with their attributes.
+/// Preconditions: `component` is one of mesh_components(mesh). Throws nothing beyond std::bad_alloc.
 Mesh extract_component(const Mesh& mesh, const MeshComponent& component);
 /// The same, made in place from a mesh that is no longer needed (no second copy of a large surface).
 Mesh extract_component(Mesh&& mesh, const MeshComponent& component);

@@ -56,6 +56,7 @@ struct EdgeNumbering {
 EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles);
 
 /// Breadth-first graph distances (in edges) from `source`; unreachable vertices get -1.
+/// Precondition: source in [0, rings.vertex_count()). Throws nothing beyond std::bad_alloc.
 std::vector<std::int32_t> graph_distances(const VertexRings& rings, std::int32_t source);
 
 }  // namespace spheremap

@@ -68,7 +68,7 @@ struct SimplifyReport {
 /// unreferenced vertex. Throws std::invalid_argument otherwise, if an option is negative or not finite,
 /// max_normal_change_degrees is not below 90, or a kept vertex does not exist.
 /// The mesh is taken by value: a caller done with it moves it in, and its triangles become the working
-/// copy instead of being copied (at 0.25 Å, 47M triangles of a GroEL contour).
+/// copy instead of being copied (a fine molecular surface has tens of millions of triangles).
 Mesh simplify_surface(Mesh mesh, const SimplifyOptions& options, SimplifyReport* report = nullptr);
 
 }  // namespace spheremap
