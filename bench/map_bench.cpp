@@ -10,7 +10,7 @@
 
 #include "../src/sphere/harmonic.hpp"
 #include "spheremap/pipeline/map_job.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/sphere/poles.hpp"
 #include "spheremap/topology/connectivity.hpp"

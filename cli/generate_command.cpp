@@ -5,7 +5,7 @@
 
 #include "commands.hpp"
 #include "spheremap/io/ply.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap::cli {
 namespace {

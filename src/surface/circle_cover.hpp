@@ -1,5 +1,5 @@
 // Private to the surface stage: whether the parts of a circle that other spheres cover leave nothing of
-// it exposed (the SAS arcs' quick test in ses.cpp).
+// it exposed (the SAS arcs' quick test in probe_centres.cpp).
 #pragma once
 
 #include <algorithm>

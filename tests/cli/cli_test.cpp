@@ -14,7 +14,7 @@
 #include "spheremap/io/ply.hpp"
 #include "spheremap/mesh.hpp"
 #include "spheremap/pipeline/map_job.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {

@@ -25,7 +25,7 @@
 #include "../test_support.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/ply.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 extern char** environ;
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "spheremap/error.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {

@@ -10,7 +10,7 @@
 #include "spheremap/reproduction/figure4.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/pipeline/report.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {

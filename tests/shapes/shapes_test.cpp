@@ -1,4 +1,4 @@
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 #include <gtest/gtest.h>
 

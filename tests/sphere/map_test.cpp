@@ -10,7 +10,7 @@
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "spheremap/topology/prepare.hpp"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {

@@ -12,7 +12,7 @@
 #include "../../src/sphere/harmonic.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/metrics/distortion.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "spheremap/topology/prepare.hpp"

@@ -9,7 +9,7 @@
 
 #include "../../src/sphere/untangle.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/sphere/certify.hpp"
 #include "spheremap/topology/connectivity.hpp"
 

@@ -16,7 +16,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// A part covered by another sphere: the angles θ with |θ - phi| > half (mod 2π), as ses.cpp writes it
+// A part covered by another sphere: the angles θ with |θ - phi| > half (mod 2π), as probe_centres.cpp writes it
 // for a circle of radius rho and a sphere centre at distance m from the circle's axis, in direction phi.
 struct Part {
   double phi, half;

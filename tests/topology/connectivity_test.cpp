@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {

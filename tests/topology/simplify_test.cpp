@@ -11,7 +11,7 @@
 #include "../../src/topology/simplify_tuning.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/topology/components.hpp"
 
 namespace spheremap {

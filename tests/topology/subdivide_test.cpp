@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/topology/components.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "../test_support.hpp"

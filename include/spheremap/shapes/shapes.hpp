@@ -1,4 +1,5 @@
-// Generated closed genus-0 meshes, for tests, benchmarks and examples. All outward oriented.
+// Generated closed genus-0 meshes, for tests, benchmarks and `spheremap generate` (stage: shapes). All
+// outward oriented.
 #pragma once
 
 #include <cstdint>
