@@ -117,9 +117,10 @@ std::vector<Vec3> map_refined(const Mesh& mesh, const VertexRings& rings, const 
       inner_south = -1;
       for (std::int32_t v = 0; v < count; ++v) {
         if (v < n && excluded[v]) continue;
+        const auto& p = refined.positions;
         if (inner_south < 0 || distance[v] > distance[inner_south] ||
-            (distance[v] == distance[inner_south] && squared_distance(refined.positions[v], refined.positions[north]) >
-                                                         squared_distance(refined.positions[inner_south], refined.positions[north])))
+            (distance[v] == distance[inner_south] &&
+             squared_distance(p[v], p[north]) > squared_distance(p[inner_south], p[north])))
           inner_south = v;
       }
     }
@@ -162,7 +163,8 @@ PlainMap map_poles_and_rings(WorkingMesh& work, std::int32_t input_vertices, con
   construction.south_ring_size = work.rings.degree(south);
   construction.theta0 = kPi / poles.graph_distance;
   construction.ring_z = detail::kRingZ;
-  construction.mercator_c = detail::kRingZ / std::log((1 + std::cos(construction.theta0)) / std::sin(construction.theta0));
+  construction.mercator_c =
+      detail::kRingZ / std::log((1 + std::cos(construction.theta0)) / std::sin(construction.theta0));
   PlainMap plain;
   plain.weights = detail::compute_weights(work.rings, work.positions, options.weights);
   solve.weight_fallback_rows = plain.weights.fallback_rows;
@@ -234,7 +236,8 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   timer.lap("certify-plain");
 
   std::optional<VertexRings> unsplit_rings;
-  detail::InputStars input(mesh, work.rings.vertex_count() == n ? work.rings : unsplit_rings.emplace(build_vertex_rings(n, mesh.triangles)));
+  detail::InputStars input(
+      mesh, work.rings.vertex_count() == n ? work.rings : unsplit_rings.emplace(build_vertex_rings(n, mesh.triangles)));
   std::optional<detail::Finished> finished;
   if (options.repair && !refined && repair.plain_certificate.collapsed > 0) {
     auto outcome = detail::reweight_against_collapse(

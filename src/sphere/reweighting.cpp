@@ -59,7 +59,8 @@ TriangleAreas triangle_areas(const std::vector<Vec3>& positions, const std::vect
 
 // Per-vertex normalized area ratio of the map on the working mesh (used to re-weight against collapse),
 // from the signed solid angles of its triangles.
-std::vector<double> vertex_area_ratios(const WorkingMesh& work, const TriangleAreas& areas, const std::vector<double>& solid_angles) {
+std::vector<double> vertex_area_ratios(const WorkingMesh& work, const TriangleAreas& areas,
+                                       const std::vector<double>& solid_angles) {
   const auto n = static_cast<std::int64_t>(work.positions.size());
   std::vector<double> sphere_area(n, 0), surface_area(n, 0);
   for (std::size_t k = 0; k < work.triangles.size(); ++k) {
@@ -123,8 +124,10 @@ class GainedMaps {
     }
     Candidate candidate;
     candidate.planar = solve_planar(work_, north_, south_, weights_, options_, factor_.get(), &best, round);
-    candidate.sphere = to_sphere(candidate.planar, north_, south_, mercator_c_, static_cast<std::int32_t>(mesh_.positions.size()));
-    candidate.certificate = certify_sphere_map(mesh_, candidate.sphere, options_.collapse_floor, &candidate.solid_angles);
+    const auto input_vertices = static_cast<std::int32_t>(mesh_.positions.size());
+    candidate.sphere = to_sphere(candidate.planar, north_, south_, mercator_c_, input_vertices);
+    candidate.certificate =
+        certify_sphere_map(mesh_, candidate.sphere, options_.collapse_floor, &candidate.solid_angles);
     return candidate;
   }
 
@@ -231,14 +234,18 @@ void equalizing_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& wo
   std::vector<double> proposal(count);
   const bool certified_by_itself = outcome.best.certificate.certified();
   const auto& input_areas = maps.input_areas();
-  double distortion = mean_area_distortion(input_areas, certified_by_itself ? outcome.best.solid_angles : outcome.finished->solid_angles);
+  double distortion = mean_area_distortion(
+      input_areas, certified_by_itself ? outcome.best.solid_angles : outcome.finished->solid_angles);
   int rejections = 0;
   double step_limit = kEqualizingStep;
   auto vertex_ratio = maps.ratios_of(outcome.best);
+  const auto untangling_limit =
+      std::max<std::int64_t>(kUntanglingAttempt, static_cast<std::int64_t>(mesh.triangles.size()) / 100);
   for (int round = 1; round <= options.max_equalizing_rounds; ++round) {
     double mean_log = 0;
     for (std::int32_t v = 0; v < count; ++v) {
-      const double factor = std::clamp(std::pow(std::max(vertex_ratio[v], 1e-300), kEqualizingExponent), 1 / step_limit, step_limit);
+      const double factor =
+          std::clamp(std::pow(std::max(vertex_ratio[v], 1e-300), kEqualizingExponent), 1 / step_limit, step_limit);
       proposal[v] = log_gain[v] + std::log(factor);
       mean_log += proposal[v] / count;
     }
@@ -252,10 +259,10 @@ void equalizing_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& wo
     const auto& cc = candidate.certificate;
     if (cc.certified()) {
       candidate_distortion = mean_area_distortion(input_areas, candidate.solid_angles);
-    } else if (std::abs(cc.coverage - 1) < 1e-9 &&
-               cc.folded + cc.collapsed <= std::max<std::int64_t>(kUntanglingAttempt, static_cast<std::int64_t>(mesh.triangles.size()) / 100)) {
+    } else if (std::abs(cc.coverage - 1) < 1e-9 && cc.folded + cc.collapsed <= untangling_limit) {
       untangled = finish_map(mesh, input, candidate.sphere, options);
-      if (untangled->certificate.certified()) candidate_distortion = mean_area_distortion(input_areas, untangled->solid_angles);
+      if (untangled->certificate.certified())
+        candidate_distortion = mean_area_distortion(input_areas, untangled->solid_angles);
     }
     if (!(candidate_distortion < distortion)) {
       step_limit = std::sqrt(step_limit);

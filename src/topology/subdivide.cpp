@@ -15,7 +15,8 @@ void subdivide_midpoint_in_place(std::vector<Vec3>& positions, std::vector<Trian
                                  bool project_to_unit_sphere) {
   const EdgeNumbering edges = number_edges(positions.size(), triangles);
   const auto old_vertex_count = static_cast<std::int64_t>(positions.size());
-  if (old_vertex_count + static_cast<std::int64_t>(edges.edge_endpoints.size()) > std::numeric_limits<std::int32_t>::max())
+  const auto new_vertex_count = old_vertex_count + static_cast<std::int64_t>(edges.edge_endpoints.size());
+  if (new_vertex_count > std::numeric_limits<std::int32_t>::max())
     throw std::invalid_argument("subdivision would exceed 2^31 - 1 vertices (32-bit triangle indices)");
 
   positions.reserve(positions.size() + edges.edge_endpoints.size());

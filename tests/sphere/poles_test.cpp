@@ -44,7 +44,8 @@ TEST(FarthestPair, MatchesBruteForce) {
   // ties included (antipodal pairs by the hundred).
   for (const Mesh& shape : {make_icosphere(3), perturb_vertices(make_icosphere(3), 0.3, 4), make_subdivided_cube(12),
                             make_ellipsoid(3, 1, 1, 1.001), make_dumbbell(3, 0.5, 20, 16)})
-    EXPECT_EQ(farthest_pair(shape.positions), brute_force_farthest_pair(shape.positions)) << shape.positions.size() << " points";
+    EXPECT_EQ(farthest_pair(shape.positions), brute_force_farthest_pair(shape.positions))
+        << shape.positions.size() << " points";
   // Two pairs at exactly the same distance: the one of the point farthest from the centre is found first,
   // the other (smaller indices) must still win.
   const std::vector<Vec3> tie{{-1, 0, 0}, {1, 0, 0}, {0, -1.25, 0}, {0, 0.75, 0}, {0, 0.5, 0}};

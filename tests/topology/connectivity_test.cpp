@@ -28,7 +28,8 @@ TEST(NumberEdges, BothHalfEdgesOfAnEdgeShareADenseIdInVertexOrder) {
     ASSERT_GE(e, 0);
     ++seen[static_cast<std::size_t>(e)];
     const auto a = half_edge_origin(mesh.triangles, h), b = half_edge_target(mesh.triangles, h);
-    EXPECT_EQ(edges.edge_endpoints[static_cast<std::size_t>(e)], (std::array<std::int32_t, 2>{std::min(a, b), std::max(a, b)}));
+    EXPECT_EQ(edges.edge_endpoints[static_cast<std::size_t>(e)],
+              (std::array<std::int32_t, 2>{std::min(a, b), std::max(a, b)}));
   }
   for (const int count : seen) EXPECT_EQ(count, 2);
 }

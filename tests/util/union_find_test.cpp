@@ -15,7 +15,8 @@ namespace {
 TEST(UnionFind, EachSetsRootIsItsSmallestNodeWhateverTheOrderOfTheJoins) {
   std::mt19937 random(9);
   std::vector<std::pair<std::int32_t, std::int32_t>> joins;
-  for (int k = 0; k < 300; ++k) joins.emplace_back(static_cast<std::int32_t>(random() % 500), static_cast<std::int32_t>(random() % 500));
+  for (int k = 0; k < 300; ++k)
+    joins.emplace_back(static_cast<std::int32_t>(random() % 500), static_cast<std::int32_t>(random() % 500));
   std::vector<std::int32_t> first_roots;
   for (int order = 0; order < 3; ++order) {
     std::shuffle(joins.begin(), joins.end(), random);
