@@ -61,9 +61,11 @@ TEST_F(DataPipeline, GroELMapsCertifiedAtTheDefaultGrid) {
   // Its equalizing rounds each collapse a few hundred triangles that untangling lifts again; before such
   // rounds were untangled, none was kept (area distortion 186% instead of 134-140%).
   EXPECT_GT(result.map.diagnostics.repair.equalizing_rounds, 0);
-  std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds (%d equalizing), %lld untangling moves, smallest ratio %.3g\n",
-              result.map.sphere.size(), result.map.diagnostics.repair.reweighting_rounds, result.map.diagnostics.repair.equalizing_rounds,
-              static_cast<long long>(result.map.diagnostics.repair.untangling_moves), c.min_area_ratio);
+  const auto& repair = result.map.diagnostics.repair;
+  std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds (%d equalizing), %lld untangling moves, "
+              "smallest ratio %.3g\n",
+              result.map.sphere.size(), repair.reweighting_rounds, repair.equalizing_rounds,
+              static_cast<long long>(repair.untangling_moves), c.min_area_ratio);
 }
 
 }  // namespace
