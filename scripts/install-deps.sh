@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
           libeigen3-dev libsuitesparse-dev libcli11-dev nlohmann-json3-dev libfmt-dev
           gemmi-dev tao-pegtl-dev zlib1g-dev libpng-dev
-          libopenblas0-serial pymol-data libgtest-dev libgmock-dev libbenchmark-dev)
+          libopenblas0-serial pymol-data libgtest-dev libgmock-dev libbenchmark-dev
+          libstb-dev pdb2pqr apbs)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -1,4 +1,4 @@
-// The only translation unit that includes gemmi (it is header-only and slow to compile).
+// The translation unit that reads with gemmi (header-only and slow to compile); pdb_writer.cpp writes with it.
 #include <gemmi/gz.hpp>
 #include <gemmi/mmread.hpp>
 

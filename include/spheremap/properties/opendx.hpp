@@ -1,0 +1,37 @@
+// OpenDX potential maps as APBS writes them (`write pot dx`), and their values at points.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "spheremap/mesh.hpp"
+
+namespace spheremap {
+
+/// A scalar field on a regular grid: the value of grid point (i, j, k) is at origin + i delta[0] +
+/// j delta[1] + k delta[2], stored at values[(i * counts[1] + j) * counts[2] + k] (z fastest, as OpenDX).
+struct DxGrid {
+  std::array<std::int64_t, 3> counts{};
+  Vec3 origin{};
+  std::array<Vec3, 3> delta{};
+  std::vector<double> values;
+};
+
+/// Reads an OpenDX file of APBS's layout: '#' comments, `object 1 class gridpositions counts nx ny nz`,
+/// `origin x y z`, three `delta` lines, optionally `object 2 class gridconnections counts nx ny nz`, then
+/// `object 3 class array type double rank 0 items N data follows` and N numbers (any number per line);
+/// what follows the data (attribute, field objects) is not read.
+/// Throws InputError naming the file, the line and the problem (a missing or malformed header line,
+/// counts below 2 or N != nx ny nz, a singular delta matrix, a value that is not a finite number, fewer
+/// values than N, or more before the next keyword).
+DxGrid read_dx(const std::filesystem::path& path);
+
+/// The trilinear interpolation of the grid at every point (exact for a field linear in x, y and z).
+/// `name` names the map in messages. Throws InputError when any point lies outside the grid's box, saying
+/// how many points, how far outside the farthest one is (Å) and the fix (a larger grid).
+std::vector<double> interpolate_dx(const DxGrid& grid, const std::vector<Vec3>& points, const std::string& name);
+
+}  // namespace spheremap
