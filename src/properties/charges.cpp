@@ -13,13 +13,15 @@
 namespace spheremap {
 namespace {
 
-// Atom names as pdb2pqr and old PDB files write them differently: O5* / O5', O1P / OP1.
+// Atom names as pdb2pqr and old PDB files (format 2) write them differently: O5* / O5', O1P / OP1, and
+// thymine's methyl C5M / C7.
 std::string canonical_atom_name(const std::string& name) {
   std::string n;
   for (const char c : name) n.push_back(c == '*' ? '\'' : static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
   if (n == "O1P") return "OP1";
   if (n == "O2P") return "OP2";
   if (n == "O3P") return "OP3";
+  if (n == "C5M") return "C7";
   return n;
 }
 

@@ -52,7 +52,7 @@ bool formal_table_knows(const std::string& residue_name);
 ChargeAssignment formal_charges(const std::vector<Atom>& atoms);
 
 /// Matches a PQR's atoms to the structure's by chain, residue number, insertion code and atom name (names
-/// compared with '*' read as '\'' and O1P/O2P as OP1/OP2, as old files and pdb2pqr differ). Structure atoms
+/// compared with '*' read as '\'', O1P/O2P as OP1/OP2 and C5M as C7, as old files and pdb2pqr differ). Structure atoms
 /// without a match get 0 and are counted; PQR atoms of the structure's residues that match no structure
 /// atom (hydrogens, rebuilt atoms) are added as charges; PQR atoms of other residues are counted, unused.
 /// `source` names the source in the result. Throws std::invalid_argument if a PQR atom has no charge.
