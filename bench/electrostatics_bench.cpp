@@ -83,10 +83,12 @@ void BM_CoulombGroEL(benchmark::State& state) {
   const int dielectric = static_cast<int>(state.range(1));
   auto& exact = p->exact[dielectric];
   if (exact.empty())
-    exact = spheremap::coulomb_potential(p->charges, p->points, options(dielectric, spheremap::CoulombSummation::kExact));
+    exact =
+        spheremap::coulomb_potential(p->charges, p->points, options(dielectric, spheremap::CoulombSummation::kExact));
   std::vector<double> fast;
   for (auto _ : state)
-    fast = spheremap::coulomb_potential(p->charges, p->points, options(dielectric, spheremap::CoulombSummation::kTreecode));
+    fast = spheremap::coulomb_potential(p->charges, p->points,
+                                        options(dielectric, spheremap::CoulombSummation::kTreecode));
   // Also over the points of moderate potential only (|exact| <= 30 kT/e): the few points a handle cut puts
   // inside atoms reach thousands of kT/e and would dominate the reference.
   double squared_error = 0, moderate_error = 0, moderate_reference = 0;
@@ -99,13 +101,10 @@ void BM_CoulombGroEL(benchmark::State& state) {
   state.counters["charges"] = static_cast<double>(p->charges.charges.size());
   state.counters["relative_rms_error"] = spheremap::relative_rms_difference(fast, exact);
   state.counters["rms_error_kT_per_e"] = std::sqrt(squared_error / static_cast<double>(fast.size()));
-  if (moderate_reference > 0) state.counters["relative_rms_error_below_30"] = std::sqrt(moderate_error / moderate_reference);
+  if (moderate_reference > 0)
+    state.counters["relative_rms_error_below_30"] = std::sqrt(moderate_error / moderate_reference);
 }
-BENCHMARK(BM_CoulombGroEL)
-    ->ArgsProduct({{0, 1}, {0, 1}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(3);
+BENCHMARK(BM_CoulombGroEL)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 }  // namespace
 

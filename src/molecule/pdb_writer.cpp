@@ -38,7 +38,8 @@ void write_pdb(const std::vector<Atom>& atoms, const std::filesystem::path& path
   options.cispep_records = false;
   std::ofstream out(path);
   if (out) gemmi::write_pdb(structure, out, options);
-  if (!out) throw InputError(fmt::format("{}: cannot write the file; check the folder's permissions and space", path.string()));
+  if (!out)
+    throw InputError(fmt::format("{}: cannot write the file; check the folder's permissions and space", path.string()));
 }
 
 }  // namespace spheremap

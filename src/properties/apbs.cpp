@@ -69,9 +69,10 @@ ApbsResult run_apbs(const std::vector<Atom>& atoms, const std::vector<Vec3>& poi
                     const std::string& name, const ProgressCallback& progress) {
   const auto apbs = detail::find_executable(kApbsProgram);
   if (!apbs)
-    throw InputError(fmt::format("{}: --apbs needs APBS, which is not installed (apbs is on no folder of PATH); install "
-                                 "Debian's packages apbs and pdb2pqr (apt-get install apbs pdb2pqr)",
-                                 name));
+    throw InputError(
+        fmt::format("{}: --apbs needs APBS, which is not installed (apbs is on no folder of PATH); install "
+                    "Debian's packages apbs and pdb2pqr (apt-get install apbs pdb2pqr)",
+                    name));
   ApbsResult result;
   const Pdb2pqrInput input = pdb2pqr_input(atoms, name);
   const detail::TemporaryFolder folder("spheremap-apbs");
@@ -90,22 +91,24 @@ ApbsResult run_apbs(const std::vector<Atom>& atoms, const std::vector<Vec3>& poi
   }
   const auto& g = result.grid;
   if (progress)
-    progress(fmt::format("apbs: solving the Poisson-Boltzmann equation on {} x {} x {} points ({:.0f} x {:.0f} x {:.0f} "
-                         "Å)",
-                         g.points[0], g.points[1], g.points[2], g.fine_length[0], g.fine_length[1], g.fine_length[2]));
-  const auto run = detail::run_program({apbs->string(), "apbs.in"}, folder.path(), folder.path() / "apbs.log",
-                                       [&](double seconds) {
-                                         if (progress) progress(fmt::format("apbs: running for {:.0f} s", seconds));
-                                       });
+    progress(
+        fmt::format("apbs: solving the Poisson-Boltzmann equation on {} x {} x {} points ({:.0f} x {:.0f} x {:.0f} "
+                    "Å)",
+                    g.points[0], g.points[1], g.points[2], g.fine_length[0], g.fine_length[1], g.fine_length[2]));
+  const auto run =
+      detail::run_program({apbs->string(), "apbs.in"}, folder.path(), folder.path() / "apbs.log", [&](double seconds) {
+        if (progress) progress(fmt::format("apbs: running for {:.0f} s", seconds));
+      });
   result.apbs_seconds = run.seconds;
   // Debian's APBS is built with MPI and names the map after the process: potential-PE0.dx.
   std::filesystem::path map;
   for (const char* file : {"potential.dx", "potential-PE0.dx"})
     if (std::filesystem::exists(folder.path() / file)) map = folder.path() / file;
   if (run.exit_code != 0 || map.empty())
-    throw InputError(fmt::format("{}: apbs failed (exit status {}{}); its last lines:\n{}Check the structure, or run "
-                                 "APBS yourself and give its map with --potential-map",
-                                 name, run.exit_code, map.empty() ? ", no potential map written" : "", run.log_tail));
+    throw InputError(
+        fmt::format("{}: apbs failed (exit status {}{}); its last lines:\n{}Check the structure, or run "
+                    "APBS yourself and give its map with --potential-map",
+                    name, run.exit_code, map.empty() ? ", no potential map written" : "", run.log_tail));
   if (progress) progress(fmt::format("apbs: done in {:.1f} s", run.seconds));
   result.potential = interpolate_dx(read_dx(map), points, fmt::format("{}: APBS's map", name));
   return result;

@@ -17,7 +17,8 @@ namespace {
 // thymine's methyl C5M / C7.
 std::string canonical_atom_name(const std::string& name) {
   std::string n;
-  for (const char c : name) n.push_back(c == '*' ? '\'' : static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  for (const char c : name)
+    n.push_back(c == '*' ? '\'' : static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
   if (n == "O1P") return "OP1";
   if (n == "O2P") return "OP2";
   if (n == "O3P") return "OP3";
@@ -80,13 +81,18 @@ ChargeAssignment match_pqr_charges(const std::vector<Atom>& atoms, const std::ve
     result.points.charges.push_back(*pqr_atoms[i].charge);
   }
   for (const double q : result.points.charges) result.net_charge += q;
-  if (result.atoms_unmatched > 0)
-    result.warnings.push_back(fmt::format("{} of {} atoms have no charge in {} and count as neutral",
-                                          result.atoms_unmatched, atoms.size(), source));
+  if (result.atoms_unmatched > 0) {
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      if (!result.atom_matched[i]) names.insert(atoms[i].residue_name);
+    result.warnings.push_back(fmt::format("{} of {} atoms (of the residues {}) have no charge in {} and count as neutral",
+                                          result.atoms_unmatched, atoms.size(), fmt::join(names, ", "), source));
+  }
   if (result.pqr_atoms_unused > 0)
-    result.warnings.push_back(fmt::format("{} atoms of {} belong to residues the structure does not have and were "
-                                          "ignored",
-                                          result.pqr_atoms_unused, source));
+    result.warnings.push_back(
+        fmt::format("{} atoms of {} belong to residues the structure does not have and were "
+                    "ignored",
+                    result.pqr_atoms_unused, source));
   return result;
 }
 
@@ -104,8 +110,8 @@ void fill_unmatched_with_formal(ChargeAssignment& charges, const std::vector<Ato
   charges.net_charge = 0;
   for (const double q : charges.points.charges) charges.net_charge += q;
   if (!residues.empty())
-    charges.warnings.push_back(fmt::format("atoms without a charge in {} took their formal charge (residues {}: {:+g} e "
-                                           "in all)",
+    charges.warnings.push_back(fmt::format("of the atoms without a charge in {}, those of {} took their formal charge "
+                                           "instead ({:+g} e in all)",
                                            charges.source, fmt::join(residues, ", "), added));
 }
 
@@ -117,10 +123,11 @@ ChargeAssignment read_pqr_charges(const std::vector<Atom>& atoms, const std::fil
   const Molecule charged = read_structure(pqr, everything);
   ChargeAssignment result = match_pqr_charges(atoms, charged.atoms, fmt::format("PQR {}", pqr.filename().string()));
   if (result.atoms_charged == 0)
-    throw InputError(fmt::format("{}: no atom of the PQR file matches an atom of the structure by chain, residue "
-                                 "number, insertion code and atom name; give the PQR of this structure, written with "
-                                 "its chain identifiers (pdb2pqr30 --keep-chain)",
-                                 pqr.string()));
+    throw InputError(
+        fmt::format("{}: no atom of the PQR file matches an atom of the structure by chain, residue "
+                    "number, insertion code and atom name; give the PQR of this structure, written with "
+                    "its chain identifiers (pdb2pqr30 --keep-chain)",
+                    pqr.string()));
   return result;
 }
 

@@ -43,7 +43,7 @@ std::vector<double> coulomb_potential(const PointCharges& charges, const std::ve
     }
   // ε = κr makes each term q / (κ r²): the kernel is 1/r², with its own expansion.
   const auto kernel = options.dielectric == Dielectric::kDistanceDependent ? detail::PowerKernel::kInverseSquare
-                                                                          : detail::PowerKernel::kInverseDistance;
+                                                                           : detail::PowerKernel::kInverseDistance;
   const bool exact = options.summation == CoulombSummation::kExact ||
                      (options.summation == CoulombSummation::kAuto &&
                       static_cast<double>(points.size()) * static_cast<double>(values.size()) <= kExactCoulombPairs);

@@ -15,10 +15,12 @@ namespace {
 bool is_pqr(const std::filesystem::path& path) {
   std::filesystem::path p = path;
   std::string extension = p.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (extension == ".gz") {
     extension = p.stem().extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
   }
   return extension == ".pqr";
 }
@@ -34,17 +36,14 @@ ChargeAssignment assign_charges(const std::vector<Atom>& atoms, const std::files
                                 const ElectrostaticsOptions& options, const ProgressCallback& progress) {
   const std::string name = structure_file.string();
   switch (options.charges) {
-    case ChargeChoice::kFormal:
-      return formal_charges(atoms);
+    case ChargeChoice::kFormal: return formal_charges(atoms);
     case ChargeChoice::kFile: {
       ChargeAssignment charges = read_pqr_charges(atoms, options.charges_file);
       fill_unmatched_with_formal(charges, atoms);
       return charges;
     }
-    case ChargeChoice::kPdb2pqr:
-      return pdb2pqr_charges(atoms, options.force_field, name, progress);
-    case ChargeChoice::kAuto:
-      break;
+    case ChargeChoice::kPdb2pqr: return pdb2pqr_charges(atoms, options.force_field, name, progress);
+    case ChargeChoice::kAuto: break;
   }
   if (is_pqr(structure_file)) return read_pqr_charges(atoms, structure_file);
   if (!pdb2pqr_available()) {
@@ -64,8 +63,8 @@ ChargeAssignment assign_charges(const std::vector<Atom>& atoms, const std::files
 ElectrostaticsResult surface_electrostatics(const Mesh& surface, const std::vector<Atom>& atoms,
                                             const std::filesystem::path& structure_file,
                                             const ElectrostaticsOptions& options, const ProgressCallback& progress) {
-  const std::vector<Vec3> points = offset_along_normals(
-      surface.positions, vertex_normals(surface.positions, surface.triangles), options.offset);
+  const std::vector<Vec3> points =
+      offset_along_normals(surface.positions, vertex_normals(surface.positions, surface.triangles), options.offset);
   ElectrostaticsResult result;
   switch (options.method) {
     case ElectrostaticsMethod::kPotentialMap:
@@ -85,8 +84,7 @@ ElectrostaticsResult surface_electrostatics(const Mesh& surface, const std::vect
       result.charges = std::move(run.charges);
       return result;
     }
-    case ElectrostaticsMethod::kCoulomb:
-      break;
+    case ElectrostaticsMethod::kCoulomb: break;
   }
   ChargeAssignment charges = assign_charges(atoms, structure_file, options, progress);
   CoulombOptions coulomb = options.coulomb;

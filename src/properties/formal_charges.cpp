@@ -21,10 +21,10 @@ std::string upper(std::string text) {
 // Standard amino acids, their protonation variants (AMBER, CHARMM names) and common modified residues
 // that keep a backbone: they can be chain termini.
 const std::set<std::string>& amino_acids() {
-  static const std::set<std::string> names = {
-      "ALA", "ARG", "ASN", "ASP", "CYS", "GLN", "GLU", "GLY", "HIS", "ILE", "LEU", "LYS", "MET", "PHE",
-      "PRO", "SER", "THR", "TRP", "TYR", "VAL", "HID", "HIE", "HIP", "HSD", "HSE", "HSP", "ASH", "GLH",
-      "LYN", "CYX", "CYM", "ARN", "TYM", "MSE", "SEC", "PYL", "UNK"};
+  static const std::set<std::string> names = {"ALA", "ARG", "ASN", "ASP", "CYS", "GLN", "GLU", "GLY", "HIS", "ILE",
+                                              "LEU", "LYS", "MET", "PHE", "PRO", "SER", "THR", "TRP", "TYR", "VAL",
+                                              "HID", "HIE", "HIP", "HSD", "HSE", "HSP", "ASH", "GLH", "LYN", "CYX",
+                                              "CYM", "ARN", "TYM", "MSE", "SEC", "PYL", "UNK"};
   return names;
 }
 
@@ -35,8 +35,8 @@ const std::set<std::string>& caps() {
 }
 
 const std::set<std::string>& nucleotides() {
-  static const std::set<std::string> names = {"DA", "DC", "DG", "DT", "DU", "DI", "A",  "C",  "G",
-                                              "U",  "T",  "I",  "RA", "RC", "RG", "RU", "N",  "DN"};
+  static const std::set<std::string> names = {"DA", "DC", "DG", "DT", "DU", "DI", "A",  "C", "G",
+                                              "U",  "T",  "I",  "RA", "RC", "RG", "RU", "N", "DN"};
   return names;
 }
 
@@ -48,20 +48,22 @@ const std::set<std::string>& waters() {
 // Monatomic ions by residue name (PDB chemical component codes).
 const std::map<std::string, double>& ions() {
   static const std::map<std::string, double> charges = {
-      {"LI", 1},  {"NA", 1},  {"K", 1},   {"RB", 1},  {"CS", 1},  {"AG", 1},  {"CU1", 1}, {"TL", 1},
-      {"MG", 2},  {"CA", 2},  {"SR", 2},  {"BA", 2},  {"MN", 2},  {"FE2", 2}, {"CO", 2},  {"NI", 2},
-      {"CU", 2},  {"ZN", 2},  {"CD", 2},  {"HG", 2},  {"PB", 2},  {"FE", 3},  {"AL", 3},  {"F", -1},
-      {"CL", -1}, {"BR", -1}, {"IOD", -1}};
+      {"LI", 1}, {"NA", 1}, {"K", 1},  {"RB", 1}, {"CS", 1},  {"AG", 1}, {"CU1", 1}, {"TL", 1},  {"MG", 2},
+      {"CA", 2}, {"SR", 2}, {"BA", 2}, {"MN", 2}, {"FE2", 2}, {"CO", 2}, {"NI", 2},  {"CU", 2},  {"ZN", 2},
+      {"CD", 2}, {"HG", 2}, {"PB", 2}, {"FE", 3}, {"AL", 3},  {"F", -1}, {"CL", -1}, {"BR", -1}, {"IOD", -1}};
   return charges;
 }
 
 // Side-chain charges: residue -> atom -> charge.
 const std::map<std::string, std::map<std::string, double>>& side_chains() {
-  static const std::map<std::string, std::map<std::string, double>> charges = {
-      {"ASP", {{"OD1", -0.5}, {"OD2", -0.5}}}, {"GLU", {{"OE1", -0.5}, {"OE2", -0.5}}},
-      {"LYS", {{"NZ", 1.0}}},                  {"ARG", {{"NH1", 0.5}, {"NH2", 0.5}}},
-      {"HIP", {{"ND1", 0.5}, {"NE2", 0.5}}},   {"HSP", {{"ND1", 0.5}, {"NE2", 0.5}}},
-      {"CYM", {{"SG", -1.0}}},                 {"TYM", {{"OH", -1.0}}}};
+  static const std::map<std::string, std::map<std::string, double>> charges = {{"ASP", {{"OD1", -0.5}, {"OD2", -0.5}}},
+                                                                               {"GLU", {{"OE1", -0.5}, {"OE2", -0.5}}},
+                                                                               {"LYS", {{"NZ", 1.0}}},
+                                                                               {"ARG", {{"NH1", 0.5}, {"NH2", 0.5}}},
+                                                                               {"HIP", {{"ND1", 0.5}, {"NE2", 0.5}}},
+                                                                               {"HSP", {{"ND1", 0.5}, {"NE2", 0.5}}},
+                                                                               {"CYM", {{"SG", -1.0}}},
+                                                                               {"TYM", {{"OH", -1.0}}}};
   return charges;
 }
 
@@ -113,8 +115,10 @@ ChargeAssignment formal_charges(const std::vector<Atom>& atoms) {
     if (!amino_acids().count(name) && !caps().count(name)) continue;
     const std::string& chain = atoms[residues[r].first].chain;
     const auto found = chain_ends.find(chain);
-    if (found == chain_ends.end()) chain_ends[chain] = {r, r};
-    else found->second.second = r;
+    if (found == chain_ends.end())
+      chain_ends[chain] = {r, r};
+    else
+      found->second.second = r;
   }
   ChargeAssignment result;
   result.source = "formal";
@@ -131,8 +135,10 @@ ChargeAssignment formal_charges(const std::vector<Atom>& atoms) {
     for (std::size_t i = residues[r].first; i < residues[r].last; ++i) {
       result.atom_charges[i] = formal_charge(atoms[i].residue_name, atoms[i].name, where);
       result.atom_matched[i] = known;
-      if (known) ++result.atoms_charged;
-      else ++result.atoms_unmatched, ++unknown[head.residue_name];
+      if (known)
+        ++result.atoms_charged;
+      else
+        ++result.atoms_unmatched, ++unknown[head.residue_name];
     }
   }
   for (std::size_t i = 0; i < atoms.size(); ++i) {
@@ -143,8 +149,8 @@ ChargeAssignment formal_charges(const std::vector<Atom>& atoms) {
   if (!unknown.empty()) {
     std::vector<std::string> names;
     for (const auto& [name, count] : unknown) names.push_back(fmt::format("{} ({} atoms)", name, count));
-    result.warnings.push_back(fmt::format("no formal charge for the residues {}: their atoms count as neutral",
-                                          fmt::join(names, ", ")));
+    result.warnings.push_back(
+        fmt::format("no formal charge for the residues {}: their atoms count as neutral", fmt::join(names, ", ")));
   }
   return result;
 }

@@ -131,12 +131,12 @@ std::int64_t read_header(Lines& lines, DxGrid& grid) {
   return items;
 }
 
-
 }  // namespace
 
 DxGrid read_dx(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open the potential map; check the path and permissions", path.string()));
+  if (!in)
+    throw InputError(fmt::format("{}: cannot open the potential map; check the path and permissions", path.string()));
   std::stringstream content;
   content << in.rdbuf();
   Lines lines(content.str(), path);
@@ -151,7 +151,8 @@ DxGrid read_dx(const std::filesystem::path& path) {
       double value = 0;
       if (!parse(token, value)) {
         if (std::isalpha(static_cast<unsigned char>(token[0])) && token != "nan" && token != "inf")
-          throw lines.error(fmt::format("'{}' after only {} of the {} values announced", token, grid.values.size(), items));
+          throw lines.error(
+              fmt::format("'{}' after only {} of the {} values announced", token, grid.values.size(), items));
         throw lines.error(fmt::format("'{}' is not a number", token));
       }
       if (!std::isfinite(value)) throw lines.error(fmt::format("'{}' is not a finite number", token));
@@ -208,17 +209,19 @@ std::vector<double> interpolate_dx(const DxGrid& grid, const std::vector<Vec3>& 
         index[a] = base[a] + (up ? 1 : 0);
         weight *= up ? fraction[a] : 1 - fraction[a];
       }
-      value += weight * grid.values[static_cast<std::size_t>((index[0] * grid.counts[1] + index[1]) * grid.counts[2] + index[2])];
+      value +=
+          weight *
+          grid.values[static_cast<std::size_t>((index[0] * grid.counts[1] + index[1]) * grid.counts[2] + index[2])];
     }
     values[p] = value;
   }
   if (outside > 0)
-    throw InputError(fmt::format("{}: {} of the {} points where the potential is wanted lie outside the map's grid, the "
-                                 "farthest {:.2f} Å outside, at ({:.3f}, {:.3f}, {:.3f}); the map must cover the "
-                                 "surface and the offset: compute it on a larger grid (APBS: larger fglen and cglen, "
-                                 "e.g. the molecule's extent + 20 Å)",
-                                 name, outside, points.size(), farthest, farthest_point[0], farthest_point[1],
-                                 farthest_point[2]));
+    throw InputError(
+        fmt::format("{}: {} of the {} points where the potential is wanted lie outside the map's grid, the "
+                    "farthest {:.2f} Å outside, at ({:.3f}, {:.3f}, {:.3f}); the map must cover the "
+                    "surface and the offset: compute it on a larger grid (APBS: larger fglen and cglen, "
+                    "e.g. the molecule's extent + 20 Å)",
+                    name, outside, points.size(), farthest, farthest_point[0], farthest_point[1], farthest_point[2]));
   return values;
 }
 

@@ -37,9 +37,10 @@ std::map<std::string, std::string> chain_letters(const std::vector<Atom>& atoms,
   }
   static const std::string kLetters = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
   if (chains.size() > kLetters.size())
-    throw InputError(fmt::format("{}: {} chains, but pdb2pqr reads PDB files, whose chain column holds one character "
-                                 "(at most {} chains); use --charges formal, or give a PQR with --charges FILE",
-                                 name, chains.size(), kLetters.size()));
+    throw InputError(
+        fmt::format("{}: {} chains, but pdb2pqr reads PDB files, whose chain column holds one character "
+                    "(at most {} chains); use --charges formal, or give a PQR with --charges FILE",
+                    name, chains.size(), kLetters.size()));
   for (std::size_t i = 0; i < chains.size(); ++i) letters[chains[i]] = kLetters.substr(i, 1);
   return letters;
 }
@@ -66,9 +67,10 @@ Pdb2pqrInput pdb2pqr_input(const std::vector<Atom>& atoms, const std::string& na
     }
     const Atom& head = input.atoms[first];
     if (head.residue_number < -999 || head.residue_number > 9999)
-      throw InputError(fmt::format("{}: residue {} {}{} has a number PDB files cannot hold (-999 to 9999), and pdb2pqr "
-                                   "reads PDB files; use --charges formal, or give a PQR with --charges FILE",
-                                   name, head.residue_name, head.chain, head.residue_number));
+      throw InputError(
+          fmt::format("{}: residue {} {}{} has a number PDB files cannot hold (-999 to 9999), and pdb2pqr "
+                      "reads PDB files; use --charges formal, or give a PQR with --charges FILE",
+                      name, head.residue_name, head.chain, head.residue_number));
     const std::string residue = trimmed_upper(head.residue_name);
     const bool dna = kOneLetterBases.count(residue) && !has_o2;
     if (dna) ++input.dna_residues_renamed;
@@ -85,9 +87,10 @@ std::vector<Atom> run_pdb2pqr(const Pdb2pqrInput& input, ForceField force_field,
                               const std::string& name, const ProgressCallback& progress) {
   const auto program = detail::find_executable(kPdb2pqrProgram);
   if (!program)
-    throw InputError(fmt::format("{}: pdb2pqr30 is not installed (it is on no folder of PATH); install Debian's package "
-                                 "pdb2pqr (apt-get install pdb2pqr), or use --charges formal",
-                                 name));
+    throw InputError(
+        fmt::format("{}: pdb2pqr30 is not installed (it is on no folder of PATH); install Debian's package "
+                    "pdb2pqr (apt-get install pdb2pqr), or use --charges formal",
+                    name));
   write_pdb(input.atoms, folder / "structure.pdb");
   if (progress)
     progress(fmt::format("pdb2pqr30: adding hydrogens and {} charges to {} atoms", to_string(force_field),
@@ -95,13 +98,15 @@ std::vector<Atom> run_pdb2pqr(const Pdb2pqrInput& input, ForceField force_field,
   const auto run = detail::run_program({program->string(), "--ff=" + to_string(force_field), "--keep-chain",
                                         "--whitespace", "structure.pdb", "structure.pqr"},
                                        folder, folder / "pdb2pqr.log", [&](double seconds) {
-                                         if (progress) progress(fmt::format("pdb2pqr30: running for {:.0f} s", seconds));
+                                         if (progress)
+                                           progress(fmt::format("pdb2pqr30: running for {:.0f} s", seconds));
                                        });
   const auto pqr = folder / "structure.pqr";
   if (run.exit_code != 0 || !std::filesystem::exists(pqr) || std::filesystem::is_empty(pqr))
-    throw InputError(fmt::format("{}: pdb2pqr30 --ff={} failed on this structure (exit status {}); its last lines:\n{}"
-                                 "Use --charges formal, or prepare a PQR yourself and give it with --charges FILE",
-                                 name, to_string(force_field), run.exit_code, run.log_tail));
+    throw InputError(
+        fmt::format("{}: pdb2pqr30 --ff={} failed on this structure (exit status {}); its last lines:\n{}"
+                    "Use --charges formal, or prepare a PQR yourself and give it with --charges FILE",
+                    name, to_string(force_field), run.exit_code, run.log_tail));
   if (progress) progress(fmt::format("pdb2pqr30: done in {:.1f} s", run.seconds));
   StructureOptions everything;
   everything.keep_hydrogens = true;

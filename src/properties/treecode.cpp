@@ -112,8 +112,8 @@ struct Tables {
   // weights n_i and n_i (n_i - 1).
   std::array<std::array<int, 3>, kTaylor> minus_one{}, minus_two{};
   std::array<std::array<double, 3>, kTaylor> weight_one{}, weight_two{};
-  std::array<int, kTerms> parent{}, axis{};  // monomial = monomial[parent] * coordinate[axis] (degree >= 1)
-  std::array<double, kTerms> inverse_factorial{};  // 1 / (i! j! k!)
+  std::array<int, kTerms> parent{}, axis{};           // monomial = monomial[parent] * coordinate[axis] (degree >= 1)
+  std::array<double, kTerms> inverse_factorial{};     // 1 / (i! j! k!)
   std::array<int, kTerms * kTerms> m2l_derivative{};  // index of m + k for the pair (m, k)
   std::array<int, kShifts> shift_target{}, shift_source{}, shift_monomial{};  // m, j, j - m
 
@@ -227,14 +227,15 @@ void add_multipole_to_local(const Vec3& r, bool inverse_square, const Recurrence
   for (int n = 1; n < Tables<P>::kTaylor; ++n) {
     const auto &one = t.minus_one[n], &two = t.minus_two[n];
     const auto &w1 = t.weight_one[n], &w2 = t.weight_two[n];
-    const double along = w1[0] * r[0] * derivative[one[0]] + w1[1] * r[1] * derivative[one[1]] +
-                         w1[2] * r[2] * derivative[one[2]];
+    const double along =
+        w1[0] * r[0] * derivative[one[0]] + w1[1] * r[1] * derivative[one[1]] + w1[2] * r[2] * derivative[one[2]];
     const double across = w2[0] * derivative[two[0]] + w2[1] * derivative[two[1]] + w2[2] * derivative[two[2]];
     derivative[n] = -(recurrence.first[n] * along + recurrence.second[n] * across) * inverse_s;
   }
   for (int m = 0; m < Tables<P>::kTerms; ++m) {
     double sum = 0;
-    for (int k = 0; k < Tables<P>::kTerms; ++k) sum += derivative[t.m2l_derivative[m * Tables<P>::kTerms + k]] * moments[k];
+    for (int k = 0; k < Tables<P>::kTerms; ++k)
+      sum += derivative[t.m2l_derivative[m * Tables<P>::kTerms + k]] * moments[k];
     local[m] += sum;
   }
 }
@@ -303,11 +304,14 @@ class DualTreeWalk {
  public:
   DualTreeWalk(const std::vector<Vec3>& positions, const std::vector<double>& charges, const std::vector<Vec3>& points,
                const TreecodeParameters& parameters)
-      : points_(points), theta_(parameters.theta), threads_(surface_threads(parameters.threads)),
+      : points_(points),
+        theta_(parameters.theta),
+        threads_(surface_threads(parameters.threads)),
         sources_tree_(build_tree(positions, parameters.source_leaf_size)),
         targets_tree_(build_tree(points, parameters.target_leaf_size)),
         moments_(node_moments<P>(sources_tree_, positions, charges, threads_)),
-        sources_(sources_in_order(positions, charges, sources_tree_.order)), recurrence_(kInverseSquare ? 1.0 : 0.5),
+        sources_(sources_in_order(positions, charges, sources_tree_.order)),
+        recurrence_(kInverseSquare ? 1.0 : 0.5),
         result_(points.size(), 0.0) {}
 
   std::vector<double> run() {
@@ -437,8 +441,8 @@ std::vector<double> treecode_power_sum(const std::vector<Vec3>& positions, const
                                        const std::vector<Vec3>& points, PowerKernel kernel,
                                        const TreecodeParameters& parameters) {
   check_sizes(positions, charges);
-  if (!(parameters.theta > 0 && parameters.theta < 1) || parameters.order < 0 ||
-      parameters.order > kMaxTreecodeOrder || parameters.source_leaf_size < 1 || parameters.target_leaf_size < 1)
+  if (!(parameters.theta > 0 && parameters.theta < 1) || parameters.order < 0 || parameters.order > kMaxTreecodeOrder ||
+      parameters.source_leaf_size < 1 || parameters.target_leaf_size < 1)
     throw std::invalid_argument("treecode: theta in (0, 1), order in [0, 6] and leaf sizes >= 1 are needed");
   if (positions.empty() || points.empty()) return std::vector<double>(points.size(), 0.0);
   switch (parameters.order) {

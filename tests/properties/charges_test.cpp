@@ -30,7 +30,8 @@ std::vector<Atom> peptide() {
   std::vector<Atom> atoms;
   for (const char* name : {"N", "CA", "C", "O", "CB", "CG", "CD", "CE", "NZ"}) atoms.push_back(atom(name, "LYS", 1));
   for (const char* name : {"N", "CA", "C", "O", "CB", "CG", "OD1", "OD2"}) atoms.push_back(atom(name, "ASP", 2));
-  for (const char* name : {"N", "CA", "C", "O", "CB", "CG", "CD", "OE1", "OE2", "OXT"}) atoms.push_back(atom(name, "GLU", 3));
+  for (const char* name : {"N", "CA", "C", "O", "CB", "CG", "CD", "OE1", "OE2", "OXT"})
+    atoms.push_back(atom(name, "GLU", 3));
   atoms.push_back(atom("CA", "CA", 101, "A", "CA"));
   atoms.push_back(atom("CL", "CL", 102, "A", "CL"));
   atoms.push_back(atom("O", "HOH", 201));
@@ -38,7 +39,8 @@ std::vector<Atom> peptide() {
   return atoms;
 }
 
-double charge_of(const std::vector<Atom>& atoms, const ChargeAssignment& charges, const char* residue, const char* name) {
+double charge_of(const std::vector<Atom>& atoms, const ChargeAssignment& charges, const char* residue,
+                 const char* name) {
   for (std::size_t i = 0; i < atoms.size(); ++i)
     if (atoms[i].residue_name == residue && atoms[i].name == name) return charges.atom_charges[i];
   ADD_FAILURE() << "no atom " << residue << " " << name;
@@ -49,10 +51,10 @@ TEST(FormalCharges, IonizableGroupsTerminiAndIons) {
   const auto atoms = peptide();
   const ChargeAssignment charges = formal_charges(atoms);
   EXPECT_EQ(charges.source, "formal");
-  EXPECT_EQ(charge_of(atoms, charges, "LYS", "N"), 1.0);   // N-terminus
+  EXPECT_EQ(charge_of(atoms, charges, "LYS", "N"), 1.0);  // N-terminus
   EXPECT_EQ(charge_of(atoms, charges, "LYS", "NZ"), 1.0);
   EXPECT_EQ(charge_of(atoms, charges, "LYS", "O"), 0.0);
-  EXPECT_EQ(charge_of(atoms, charges, "ASP", "N"), 0.0);   // not a terminus
+  EXPECT_EQ(charge_of(atoms, charges, "ASP", "N"), 0.0);  // not a terminus
   EXPECT_EQ(charge_of(atoms, charges, "ASP", "OD1"), -0.5);
   EXPECT_EQ(charge_of(atoms, charges, "ASP", "OD2"), -0.5);
   EXPECT_EQ(charge_of(atoms, charges, "GLU", "OE1"), -0.5);
@@ -110,9 +112,9 @@ Atom charged(Atom a, double q) {
 }
 
 TEST(PqrCharges, MatchedByChainResidueAndNameHydrogensAdded) {
-  const std::vector<Atom> atoms = {atom("N", "LYS", 1), atom("NZ", "LYS", 1), atom("O5*", "DA", 2), atom("O1P", "DA", 2),
-                                   atom("CA", "GLY", 3)};
-  const std::vector<Atom> pqr = {charged(atom("N", "LYS", 1), 0.1),   charged(atom("NZ", "LYS", 1), -0.3),
+  const std::vector<Atom> atoms = {atom("N", "LYS", 1), atom("NZ", "LYS", 1), atom("O5*", "DA", 2),
+                                   atom("O1P", "DA", 2), atom("CA", "GLY", 3)};
+  const std::vector<Atom> pqr = {charged(atom("N", "LYS", 1), 0.1),    charged(atom("NZ", "LYS", 1), -0.3),
                                  charged(atom("HZ1", "LYS", 1), 0.33), charged(atom("HZ2", "LYS", 1), 0.33),
                                  charged(atom("O5'", "DA", 2), -0.5),  charged(atom("OP1", "DA", 2), -0.7),
                                  charged(atom("OXT", "DA", 2), -0.2),  charged(atom("N", "GLY", 9), 1.0)};
@@ -121,7 +123,7 @@ TEST(PqrCharges, MatchedByChainResidueAndNameHydrogensAdded) {
   EXPECT_EQ(c.atom_matched, (std::vector<bool>{true, true, true, true, false}));
   EXPECT_EQ(c.atoms_charged, 4);
   EXPECT_EQ(c.atoms_unmatched, 1);
-  EXPECT_EQ(c.added_atoms, 3);      // two hydrogens and an OXT, in residues of the structure
+  EXPECT_EQ(c.added_atoms, 3);  // two hydrogens and an OXT, in residues of the structure
   EXPECT_EQ(c.added_hydrogens, 2);
   EXPECT_EQ(c.pqr_atoms_unused, 1);  // GLY 9 is not in the structure
   ASSERT_EQ(c.points.charges.size(), 8u);
@@ -141,7 +143,8 @@ TEST(PqrCharges, MatchedByChainResidueAndNameHydrogensAdded) {
 TEST(PqrCharges, APqrWithoutChainsMatchesAOneChainStructure) {
   Atom no_chain = charged(atom("NZ", "LYS", 1, ""), 1.0);
   EXPECT_EQ(match_pqr_charges({atom("NZ", "LYS", 1, "A")}, {no_chain}, "x").atoms_charged, 1);
-  EXPECT_EQ(match_pqr_charges({atom("NZ", "LYS", 1, "A"), atom("NZ", "LYS", 1, "B")}, {no_chain}, "x").atoms_charged, 0);
+  EXPECT_EQ(match_pqr_charges({atom("NZ", "LYS", 1, "A"), atom("NZ", "LYS", 1, "B")}, {no_chain}, "x").atoms_charged,
+            0);
   EXPECT_THROW(match_pqr_charges({atom("NZ", "LYS", 1)}, {atom("NZ", "LYS", 1)}, "x"), std::invalid_argument);
 }
 

@@ -38,7 +38,8 @@ TEST(Coulomb, OneChargeGivesTheAnalyticPotentialAtTheOffsetPoints) {
   const PointCharges charge{{{0, 0, 0}}, {-1.5}};
   const double lb = bjerrum_length(298.15);
   for (const auto summation : {CoulombSummation::kExact, CoulombSummation::kTreecode}) {
-    const auto distance_dependent = coulomb_potential(charge, points, with(Dielectric::kDistanceDependent, 4, summation));
+    const auto distance_dependent =
+        coulomb_potential(charge, points, with(Dielectric::kDistanceDependent, 4, summation));
     const auto constant = coulomb_potential(charge, points, with(Dielectric::kConstant, 80, summation));
     for (std::size_t v = 0; v < points.size(); ++v) {
       const double r = norm(points[v]);
@@ -66,7 +67,8 @@ TEST(Coulomb, TwoOppositeChargesGiveAnAntisymmetricField) {
   mirrored.push_back({0, 5, 1});
   for (const auto dielectric : {Dielectric::kDistanceDependent, Dielectric::kConstant}) {
     const auto options = with(dielectric, 4, CoulombSummation::kExact);
-    const auto phi = coulomb_potential(dipole, points, options), phi_mirrored = coulomb_potential(dipole, mirrored, options);
+    const auto phi = coulomb_potential(dipole, points, options),
+               phi_mirrored = coulomb_potential(dipole, mirrored, options);
     for (std::size_t i = 0; i < points.size(); ++i) {
       EXPECT_EQ(phi_mirrored[i], -phi[i]);
       if (points[i][0] > 0) EXPECT_GT(phi[i], 0);  // nearer the positive charge
@@ -107,9 +109,11 @@ TEST(Coulomb, TreecodeMatchesTheExactSumOnTenThousandCharges) {
   const RandomSystem system = random_system(10000, 20000, 11);
   for (const auto dielectric : {Dielectric::kDistanceDependent, Dielectric::kConstant}) {
     const auto exact = coulomb_potential(system.charges, system.points, with(dielectric, 4, CoulombSummation::kExact));
-    const auto fast = coulomb_potential(system.charges, system.points, with(dielectric, 4, CoulombSummation::kTreecode));
+    const auto fast =
+        coulomb_potential(system.charges, system.points, with(dielectric, 4, CoulombSummation::kTreecode));
     const double error = relative_rms_difference(fast, exact);
-    RecordProperty(dielectric == Dielectric::kConstant ? "error_constant" : "error_distance_dependent", std::to_string(error));
+    RecordProperty(dielectric == Dielectric::kConstant ? "error_constant" : "error_distance_dependent",
+                   std::to_string(error));
     EXPECT_LE(error, 1e-3) << "relative RMS error of the treecode (defaults) against the exact sum";
     EXPECT_GT(error, 0) << "the treecode must have expanded some cells for this test to test it";
   }

@@ -149,20 +149,22 @@ const Barnase& barnase() {
 }
 
 // Mean potential on the vertices whose nearest atom is one of `names` of `residue`.
-double mean_near(const std::vector<double>& potential, const std::string& residue, const std::vector<std::string>& names) {
+double mean_near(const std::vector<double>& potential, const std::string& residue,
+                 const std::vector<std::string>& names) {
   const auto& b = barnase();
   const auto& atom_of = b.surface.integer_attributes.at("atomid");
   double sum = 0;
   int count = 0;
   for (std::size_t v = 0; v < potential.size(); ++v) {
     const Atom& a = b.atoms[atom_of[v]];
-    if (a.residue_name == residue && std::find(names.begin(), names.end(), a.name) != names.end()) sum += potential[v], ++count;
+    if (a.residue_name == residue && std::find(names.begin(), names.end(), a.name) != names.end())
+      sum += potential[v], ++count;
   }
   EXPECT_GT(count, 20) << residue;
   return sum / count;
 }
 
-#define SKIP_WITHOUT(condition, what)                                                       \
+#define SKIP_WITHOUT(condition, what) \
   if (!(condition)) GTEST_SKIP() << what << " is not installed or not found: test skipped"
 
 TEST(DataElectrostatics, Pdb2pqrGivesBarnaseItsNetChargeOfPlusTwo) {
@@ -197,9 +199,9 @@ TEST(DataElectrostatics, BarnaseSurfaceIsMostlyPositiveNearLysinesAndNegativeNea
   for (const double v : r.potential) mean += v, negative += v < 0;
   mean /= static_cast<double>(r.potential.size());
   negative /= static_cast<double>(r.potential.size());
-  EXPECT_GT(mean, 1.0);        // measured +2.8 kT/e
-  EXPECT_LT(negative, 0.45);   // measured 36.5%, not "84% negative"
-  EXPECT_GT(mean_near(r.potential, "LYS", {"NZ"}), 5.0);             // measured +12.7
+  EXPECT_GT(mean, 1.0);                                   // measured +2.8 kT/e
+  EXPECT_LT(negative, 0.45);                              // measured 36.5%, not "84% negative"
+  EXPECT_GT(mean_near(r.potential, "LYS", {"NZ"}), 5.0);  // measured +12.7
   EXPECT_LT(mean_near(r.potential, "ASP", {"OD1", "OD2"}), -1.0);
   EXPECT_LT(mean_near(r.potential, "GLU", {"OE1", "OE2"}), -1.0);
 }
@@ -219,7 +221,8 @@ TEST(DataElectrostatics, ApbsRunForTheUserAgreesWithCoulombOnBarnase) {
   EXPECT_EQ(progress.front().rfind("pdb2pqr30: adding hydrogens", 0), 0u) << progress.front();
   EXPECT_EQ(std::count_if(progress.begin(), progress.end(),
                           [](const std::string& line) {
-                            return line.rfind("apbs: solving the Poisson-Boltzmann equation on 97 x 97 x 97 points", 0) == 0;
+                            return line.rfind("apbs: solving the Poisson-Boltzmann equation on 97 x 97 x 97 points",
+                                              0) == 0;
                           }),
             1);
   EXPECT_EQ(progress.back().rfind("apbs: done in", 0), 0u) << progress.back();
@@ -237,7 +240,7 @@ TEST(DataElectrostatics, ApbsRunForTheUserAgreesWithCoulombOnBarnase) {
   }
   EXPECT_GT(sx / n, 0.5);  // mean: measured +1.5 kT/e
   EXPECT_GT((sxy - sx * sy / n) / std::sqrt((sxx - sx * sx / n) * (syy - sy * sy / n)), 0.5);  // measured 0.67
-  EXPECT_GT(mean_near(apbs.potential, "LYS", {"NZ"}), 1.0);  // measured +3.4
+  EXPECT_GT(mean_near(apbs.potential, "LYS", {"NZ"}), 1.0);                                    // measured +3.4
   EXPECT_LT(mean_near(apbs.potential, "ASP", {"OD1", "OD2"}) + mean_near(apbs.potential, "GLU", {"OE1", "OE2"}), 0);
 }
 

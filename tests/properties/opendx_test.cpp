@@ -37,8 +37,9 @@ std::string dx_text(std::array<int, 3> n, const Vec3& origin, const std::array<V
         text += fmt::format("{}{}", fmt::format("{:.17g}", f(p)), ++column % 3 == 0 ? "\n" : " ");
       }
   if (column % 3 != 0) text += "\n";
-  text += "attribute \"dep\" string \"positions\"\nobject \"regular positions regular connections\" class field\n"
-          "component \"positions\" value 1\ncomponent \"connections\" value 2\ncomponent \"data\" value 3\n";
+  text +=
+      "attribute \"dep\" string \"positions\"\nobject \"regular positions regular connections\" class field\n"
+      "component \"positions\" value 1\ncomponent \"connections\" value 2\ncomponent \"data\" value 3\n";
   return text;
 }
 
@@ -79,7 +80,8 @@ TEST(OpenDx, SkewGridsInterpolateExactlyToo) {
 }
 
 TEST(OpenDx, APointOutsideTheMapSaysHowFarAndTheFix) {
-  const auto path = write("outside.dx", dx_text({3, 3, 3}, {0, 0, 0}, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, linear));
+  const auto path =
+      write("outside.dx", dx_text({3, 3, 3}, {0, 0, 0}, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, linear));
   const DxGrid grid = read_dx(path);
   std::filesystem::remove(path);
   try {
@@ -118,7 +120,8 @@ TEST(OpenDx, BadFilesNameTheLineAndTheProblem) {
   // The header: lines 1-4 are comments, 5 gridpositions, 6 origin, 7-9 deltas, 10 connections, 11 array.
   expect_bad(replace("counts 2 2 3\norigin", "counts 2 2 4\norigin"), ":10:", "gridconnections counts differ");
   expect_bad(replace("items 12", "items 13"), ":11:", "13 items announced, but the grid has 2 x 2 x 3 = 12 points");
-  expect_bad(replace("gridpositions counts 2 2 3", "gridpositions counts 2 x 3"), ":5:", "'x' in the grid counts is not a number");
+  expect_bad(replace("gridpositions counts 2 2 3", "gridpositions counts 2 x 3"),
+             ":5:", "'x' in the grid counts is not a number");
   expect_bad(replace("gridpositions counts 2 2 3", "gridpositions counts 1 2 3"), ":5:", "a grid count of 1");
   expect_bad(replace("origin", "origine"), ":6:", "expected 'origin x y z'");
   expect_bad(replace("delta 0.000000e+00 0.000000e+00 1.000000e+00", "delta 1.000000e+00 1.000000e+00 0.000000e+00"),

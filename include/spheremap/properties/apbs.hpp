@@ -22,11 +22,11 @@ bool apbs_available();
 /// (bcfl sdh), charges by cubic B-splines (chgm spl2): pdb2pqr's template, with the grid sized below.
 struct ApbsOptions {
   ForceField force_field = ForceField::kAmber;
-  double temperature = 298.15;          // K
-  double solute_dielectric = 2.0;       // pdie
-  double solvent_dielectric = 78.54;    // sdie
-  double grid_spacing = 0.5;            // Å, the fine grid's target spacing (psize's default)
-  double memory_limit_megabytes = 2000; // the spacing grows until APBS's estimated memory fits
+  double temperature = 298.15;           // K
+  double solute_dielectric = 2.0;        // pdie
+  double solvent_dielectric = 78.54;     // sdie
+  double grid_spacing = 0.5;             // Å, the fine grid's target spacing (psize's default)
+  double memory_limit_megabytes = 2000;  // the spacing grows until APBS's estimated memory fits
 };
 
 /// An mg-auto grid. As APBS's psize.py: fine length = extent + 20 Å, coarse length = 1.7 extent, points

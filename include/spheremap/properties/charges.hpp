@@ -18,15 +18,15 @@ struct ChargeAssignment {
   /// to residues of the structure (the hydrogens pdb2pqr builds, a missing OXT or side chain). Those added
   /// atoms carry charge but make no surface: they are not in the structure's atom list.
   PointCharges points;
-  std::vector<double> atom_charges;  // per atom of the structure (e), in its order; 0 for an unmatched one
-  std::vector<bool> atom_matched;    // per atom of the structure: the source gave its charge
-  std::string source;                // "formal", "pdb2pqr (AMBER)", "PQR file.pqr"
-  std::int64_t atoms_charged = 0;    // structure atoms that got a charge from the source (even 0.0)
-  std::int64_t atoms_unmatched = 0;  // structure atoms the source has no charge for (charge 0, or formal)
-  std::int64_t added_atoms = 0;      // PQR atoms of the structure's residues that it lacks (in `points`)
-  std::int64_t added_hydrogens = 0;  // of which hydrogens
-  std::int64_t pqr_atoms_unused = 0; // PQR atoms of residues the structure does not have (ignored)
-  double net_charge = 0;             // Σ of `points` (e)
+  std::vector<double> atom_charges;   // per atom of the structure (e), in its order; 0 for an unmatched one
+  std::vector<bool> atom_matched;     // per atom of the structure: the source gave its charge
+  std::string source;                 // "formal", "pdb2pqr (AMBER)", "PQR file.pqr"
+  std::int64_t atoms_charged = 0;     // structure atoms that got a charge from the source (even 0.0)
+  std::int64_t atoms_unmatched = 0;   // structure atoms the source has no charge for (charge 0, or formal)
+  std::int64_t added_atoms = 0;       // PQR atoms of the structure's residues that it lacks (in `points`)
+  std::int64_t added_hydrogens = 0;   // of which hydrogens
+  std::int64_t pqr_atoms_unused = 0;  // PQR atoms of residues the structure does not have (ignored)
+  double net_charge = 0;              // Σ of `points` (e)
   std::vector<std::string> warnings;
 };
 

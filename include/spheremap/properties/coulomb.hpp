@@ -51,7 +51,7 @@ struct TreecodeOptions {
 
 struct CoulombOptions {
   Dielectric dielectric = Dielectric::kDistanceDependent;
-  double dielectric_value = 4;  // κ of ε(r) = κr, or the constant ε
+  double dielectric_value = 4;               // κ of ε(r) = κr, or the constant ε
   double temperature = kDefaultTemperature;  // K
   CoulombSummation summation = CoulombSummation::kAuto;
   TreecodeOptions treecode;

@@ -48,7 +48,8 @@ struct ElectrostaticsOptions {
 
 struct ElectrostaticsResult {
   std::vector<double> potential;  // kT/e at every vertex of the surface
-  std::string source;  // e.g. "Coulomb, epsilon = 4r, charges: pdb2pqr (AMBER)", "APBS map FILE", "APBS (pdb2pqr AMBER)"
+  std::string
+      source;  // e.g. "Coulomb, epsilon = 4r, charges: pdb2pqr (AMBER)", "APBS map FILE", "APBS (pdb2pqr AMBER)"
   std::optional<ChargeAssignment> charges;  // what the potential summed (Coulomb and APBS)
   std::vector<std::string> warnings;
 };
