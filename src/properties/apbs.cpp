@@ -10,7 +10,7 @@
 
 #include "../util/subprocess.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/properties/opendx.hpp"
+#include "spheremap/properties/potential_map.hpp"
 
 namespace spheremap {
 namespace {

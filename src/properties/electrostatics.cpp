@@ -7,7 +7,7 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/normals.hpp"
-#include "spheremap/properties/opendx.hpp"
+#include "spheremap/properties/potential_map.hpp"
 
 namespace spheremap {
 namespace {

@@ -1,10 +1,9 @@
-// OpenDX potential maps as APBS writes them (`write pot dx`), and their values at points.
+// OpenDX potential maps as APBS writes them (`write pot dx`).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
-#include <string>
 #include <vector>
 
 #include "spheremap/mesh.hpp"
@@ -28,10 +27,5 @@ struct DxGrid {
 /// counts below 2 or N != nx ny nz, a singular delta matrix, a value that is not a finite number, fewer
 /// values than N, or more before the next keyword).
 DxGrid read_dx(const std::filesystem::path& path);
-
-/// The trilinear interpolation of the grid at every point (exact for a field linear in x, y and z).
-/// `name` names the map in messages. Throws InputError when any point lies outside the grid's box, saying
-/// how many points, how far outside the farthest one is (Å) and the fix (a larger grid).
-std::vector<double> interpolate_dx(const DxGrid& grid, const std::vector<Vec3>& points, const std::string& name);
 
 }  // namespace spheremap
