@@ -259,5 +259,30 @@ TEST(DataElectrostatics, Pdb2pqrReadsOldDnaResidueNames) {
             std::string::npos);
 }
 
+// pdb2pqr 3.5's PARSE has no DNA parameters and gives up on this hybrid (a non-integral total charge).
+TEST(DataElectrostatics, Pdb2pqrFailingIsAnErrorOrFormalCharges) {
+  const auto file = kData / "pdb/misc/104d.pdb";
+  SKIP_WITHOUT(std::filesystem::exists(file), "../shared/data/pdb/misc/104d.pdb");
+  SKIP_WITHOUT(pdb2pqr_available(), "pdb2pqr30 (Debian package pdb2pqr)");
+  const auto atoms = read_structure(file).atoms;
+  ElectrostaticsOptions options;
+  options.force_field = ForceField::kParse;
+  options.charges = ChargeChoice::kPdb2pqr;
+  try {
+    assign_charges(atoms, file, options);
+    ADD_FAILURE() << "pdb2pqr --ff=PARSE did not fail on 104d";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("pdb2pqr30 --ff=PARSE failed on this structure"), std::string::npos) << message;
+    EXPECT_NE(message.find("Use --charges formal"), std::string::npos) << message;
+  }
+  options.charges = ChargeChoice::kAuto;
+  const ChargeAssignment charges = assign_charges(atoms, file, options);
+  EXPECT_EQ(charges.source, "formal");
+  ASSERT_FALSE(charges.warnings.empty());
+  EXPECT_EQ(charges.warnings.back().rfind("formal charges, because pdb2pqr failed", 0), 0u);
+  EXPECT_EQ(charges.net_charge, -22);  // 24 nucleotides, the two 5' ends without a phosphate
+}
+
 }  // namespace
 }  // namespace spheremap
