@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "../surface/parallel.hpp"
+#include "../util/parallel.hpp"
 #include "spheremap/geometry/vec.hpp"
 
 namespace spheremap::detail {

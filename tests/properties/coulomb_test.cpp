@@ -8,7 +8,7 @@
 
 #include "spheremap/geometry/normals.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {

@@ -13,7 +13,7 @@
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/normals.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 #include "spheremap/surface/ses.hpp"
 
 namespace spheremap {
