@@ -1,0 +1,69 @@
+// Colour scales shared by every picture of spheremap (2D maps, hemisphere pictures, the viewer): one
+// 256-entry table per kind of scale and one rule from a value to a table entry, so that a value gets the
+// same colour everywhere.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace spheremap {
+
+/// How a property's values are coloured.
+enum class ScaleKind : std::uint8_t {
+  sequential,   // ordered values (B-factor, hydrophobicity, curvature): viridis
+  diverging,    // signed values around 0 (electrostatics): red (low) - white - blue (high)
+  categorical,  // whole numbers naming classes (chain, octant): one distinct colour per class
+};
+
+/// "sequential", "diverging" or "categorical".
+std::string_view to_string(ScaleKind kind);
+
+/// An 8-bit sRGB colour.
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+  friend bool operator==(const Rgb8&, const Rgb8&) = default;
+};
+
+inline constexpr int kColourTableSize = 256;
+using ColourTable = std::array<Rgb8, kColourTableSize>;
+
+/// The colour of a missing value (NaN) on every scale: mid grey, in none of the tables' ramps.
+inline constexpr Rgb8 kMissingValueColour{128, 128, 128};
+
+/// matplotlib's viridis (van der Walt and Smith), its published 256 entries rounded to 8 bits.
+const ColourTable& viridis_table();
+
+/// ColorBrewer's 9-class RdBu (Brewer), from red (entry 0) through near-white to blue (entry 255),
+/// interpolated linearly in sRGB: negative potentials red, positive blue, as the paper draws them.
+const ColourTable& red_white_blue_table();
+
+/// Tableau 10 repeated: entry k is class k's colour (classes 10 apart share a colour).
+const ColourTable& categorical_table();
+
+/// The table of a scale kind (one of the three above).
+const ColourTable& colour_table(ScaleKind kind);
+
+/// The values a continuous scale spans: lo gets the first entry, hi the last; values outside saturate.
+struct ValueRange {
+  double lo = 0;
+  double hi = 1;
+};
+
+/// The table entry of `value`, or -1 for a missing value. Continuous scales: t = (value - lo) / (hi - lo),
+/// entry floor(256 t) clamped to [0, 255] (so lo..hi is cut into 256 equal bins; +-infinity saturate);
+/// a range with hi <= lo gives entry 128 for every value. Categorical: the value rounded to the nearest
+/// whole number, -1 if that is outside [0, 255]; `range` is not used. NaN gives -1 on every scale.
+/// The viewer's script applies the same rule (viewer/src/colour.js); keep them equal.
+int colour_index(ScaleKind kind, const ValueRange& range, double value);
+
+/// colour_table(kind)[colour_index(...)], or kMissingValueColour for -1.
+Rgb8 colour_of(ScaleKind kind, const ValueRange& range, double value);
+
+/// A default range for `values` (NaN ignored): sequential [min, max]; diverging [-m, m] with m the largest
+/// |value|; categorical [0, 255]. With no finite value, or all values equal (m = 0), the range is widened
+/// to a width of 1 around them ([-1, 1] for diverging), so that hi > lo always.
+ValueRange data_range(ScaleKind kind, std::span<const float> values);
+
+}  // namespace spheremap
