@@ -6,7 +6,11 @@ packages=(build-essential cmake ninja-build pkg-config
           libeigen3-dev libsuitesparse-dev libcli11-dev nlohmann-json3-dev libfmt-dev
           gemmi-dev tao-pegtl-dev zlib1g-dev libpng-dev
           libopenblas0-serial pymol-data libgtest-dev libgmock-dev libbenchmark-dev
-          libstb-dev pdb2pqr apbs)
+          libstb-dev pdb2pqr apbs
+          chromium)  # headless Chromium for the viewer's browser test
+# The viewer (index.html) is bundled at build time with npm packages (viewer/package-lock.json): Debian's
+# Node.js and npm only when no npm is on the PATH already (a newer Node.js from elsewhere is kept).
+command -v npm >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -1,0 +1,161 @@
+// Packing the viewer's data: typed arrays in one blob, texts in a JSON manifest (see viewer_payload.hpp).
+#include "viewer_payload.hpp"
+
+#include <zlib.h>
+
+#include <bit>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace spheremap::detail {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Appends typed arrays to the blob, little-endian whatever the host, and records them in the manifest.
+class BlobWriter {
+ public:
+  explicit BlobWriter(Json& arrays) : arrays_(arrays) {}
+
+  void begin(const std::string& name, const char* type, std::size_t count) {
+    arrays_[name] = Json{{"type", type}, {"offset", blob_.size()}, {"count", count}};
+  }
+  void u32(std::uint32_t v) {
+    for (int shift = 0; shift < 32; shift += 8) blob_.push_back(static_cast<char>((v >> shift) & 0xffu));
+  }
+  void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
+  void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
+  void u8(std::uint8_t v) { blob_.push_back(static_cast<char>(v)); }
+  // Keeps every array 4-byte aligned, as Float32Array / Int32Array views require.
+  void align() {
+    while (blob_.size() % 4 != 0) blob_.push_back('\0');
+  }
+  std::string take() { return std::move(blob_); }
+
+ private:
+  Json& arrays_;
+  std::string blob_;
+};
+
+// Interns texts: each distinct string once, in order of first use, repaired to valid UTF-8.
+class StringTable {
+ public:
+  std::uint32_t id(const std::string& text) {
+    const auto [it, inserted] = ids_.try_emplace(text, static_cast<std::uint32_t>(strings_.size()));
+    if (inserted) strings_.push_back(valid_utf8(text));
+    return it->second;
+  }
+  [[nodiscard]] const std::vector<std::string>& strings() const { return strings_; }
+
+ private:
+  std::map<std::string, std::uint32_t> ids_;
+  std::vector<std::string> strings_;
+};
+
+void pack_positions(BlobWriter& out, const std::string& name, const std::vector<Vec3>& positions) {
+  out.begin(name, "float32", positions.size() * 3);
+  for (const Vec3& p : positions)
+    for (const double c : p) out.f32(static_cast<float>(c));
+}
+
+void pack_atoms(BlobWriter& out, StringTable& strings, const std::vector<ViewerAtom>& atoms) {
+  // One column per field: a column of one kind of value compresses far better than interleaved records.
+  const auto text_column = [&](const char* name, std::string ViewerAtom::*field) {
+    out.begin(name, "uint32", atoms.size());
+    for (const ViewerAtom& a : atoms) out.u32(strings.id(a.*field));
+  };
+  text_column("atom_chain", &ViewerAtom::chain);
+  text_column("atom_residue_name", &ViewerAtom::residue_name);
+  out.begin("atom_residue_number", "int32", atoms.size());
+  for (const ViewerAtom& a : atoms) out.i32(a.residue_number);
+  text_column("atom_insertion_code", &ViewerAtom::insertion_code);
+  text_column("atom_name", &ViewerAtom::atom_name);
+}
+
+Json pack_property(BlobWriter& out, const ViewerProperty& property, std::size_t index) {
+  const std::string values = "property" + std::to_string(index) + "_values";
+  const std::string table = "property" + std::to_string(index) + "_colours";
+  out.begin(values, "float32", property.values.size());
+  for (const float v : property.values) out.f32(v);
+  out.begin(table, "uint8", 3 * kColourTableSize);
+  for (const Rgb8& c : colour_table(property.scale)) out.u8(c.r), out.u8(c.g), out.u8(c.b);
+  out.align();
+  Json categories = Json::array();
+  for (const std::string& c : property.categories) categories.push_back(valid_utf8(c));
+  return Json{{"name", valid_utf8(property.name)},
+              {"unit", valid_utf8(property.unit)},
+              {"scale", std::string(to_string(property.scale))},
+              {"range", Json::array({property.range.lo, property.range.hi})},
+              {"values", values},
+              {"colours", table},
+              {"categories", categories}};
+}
+
+}  // namespace
+
+ViewerPayload pack_viewer_payload(const ViewerData& data) {
+  const std::size_t n = data.surface_positions.size();
+  Json arrays = Json::object();
+  BlobWriter out(arrays);
+  StringTable strings;
+  pack_positions(out, "surface_positions", data.surface_positions);
+  pack_positions(out, "sphere_positions", data.sphere_positions);
+  out.begin("triangles", "uint32", data.triangles.size() * 3);
+  for (const Triangle& t : data.triangles)
+    for (const std::int32_t v : t) out.u32(static_cast<std::uint32_t>(v));
+  out.begin("vertex_atoms", "int32", n);
+  for (std::size_t v = 0; v < n; ++v) out.i32(data.vertex_atoms.empty() ? -1 : data.vertex_atoms[v]);
+  pack_atoms(out, strings, data.atoms);
+  Json properties = Json::array();
+  for (std::size_t i = 0; i < data.properties.size(); ++i) properties.push_back(pack_property(out, data.properties[i], i));
+
+  const Json manifest{{"format", "spheremap-viewer"},
+                      {"version", 1},
+                      {"title", valid_utf8(data.title)},
+                      {"vertex_count", n},
+                      {"triangle_count", data.triangles.size()},
+                      {"atom_count", data.atoms.size()},
+                      {"missing_colour", Json::array({kMissingValueColour.r, kMissingValueColour.g, kMissingValueColour.b})},
+                      {"properties", properties},
+                      {"strings", strings.strings()},
+                      {"arrays", arrays}};
+  return {manifest.dump(), out.take()};
+}
+
+std::string deflate_zlib(const std::string& bytes) {
+  uLongf size = compressBound(static_cast<uLong>(bytes.size()));
+  std::string out(size, '\0');
+  const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(bytes.data()),
+                               static_cast<uLong>(bytes.size()), Z_DEFAULT_COMPRESSION);
+  if (status != Z_OK) throw std::runtime_error("zlib could not compress the viewer's data (status " + std::to_string(status) + ")");
+  out.resize(size);
+  return out;
+}
+
+std::string base64_encode(const std::string& bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t left = bytes.size() - i;
+    std::uint32_t group = static_cast<std::uint8_t>(bytes[i]) << 16;
+    if (left > 1) group |= static_cast<std::uint8_t>(bytes[i + 1]) << 8;
+    if (left > 2) group |= static_cast<std::uint8_t>(bytes[i + 2]);
+    out.push_back(kAlphabet[(group >> 18) & 63]);
+    out.push_back(kAlphabet[(group >> 12) & 63]);
+    out.push_back(left > 1 ? kAlphabet[(group >> 6) & 63] : '=');
+    out.push_back(left > 2 ? kAlphabet[group & 63] : '=');
+  }
+  return out;
+}
+
+std::string valid_utf8(const std::string& text) {
+  // nlohmann's serializer already knows UTF-8: its "replace" handler substitutes U+FFFD for every invalid
+  // sequence; parsing its output back gives the repaired text.
+  return Json::parse(Json(text).dump(-1, ' ', false, Json::error_handler_t::replace)).get<std::string>();
+}
+
+}  // namespace spheremap::detail
