@@ -53,6 +53,13 @@ target_sources(${_viewer_target} PRIVATE ${_viewer_page_cpp})
 set_source_files_properties(${_viewer_page_cpp} PROPERTIES INCLUDE_DIRECTORIES ${CMAKE_SOURCE_DIR}/src/render)
 target_link_libraries(${_viewer_target} PRIVATE ZLIB::ZLIB)
 
+if(SPHEREMAP_BUILD_TESTS)
+  # The page's plain functions (colour rule, residue queries, orientation) under node's test runner.
+  add_test(NAME ViewerScripts COMMAND ${SPHEREMAP_NODE_EXECUTABLE} --test ${SPHEREMAP_VIEWER_SOURCE_DIR}/test/
+           WORKING_DIRECTORY ${SPHEREMAP_VIEWER_SOURCE_DIR})
+  set_tests_properties(ViewerScripts PROPERTIES LABELS unit)
+endif()
+
 if(TARGET spheremap_tests)
   # The browser test drives Chromium through playwright-core from the same node_modules.
   target_compile_definitions(spheremap_tests PRIVATE

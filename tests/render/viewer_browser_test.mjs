@@ -55,6 +55,9 @@ try {
         `both views are drawn: ${painted.surface} and ${painted.sphere} of ${half} pixels differ from the background`);
   await page.screenshot({ path: join(spec.outputDir, 'viewer.png') });
 
+  // The picks below are chosen in plain view from +z: look from there (the page opens "oriented").
+  await page.evaluate(() => window.spheremapViewer.lookAlong([0, 0, 1], [0, 1, 0]));
+  await page.waitForFunction((n) => window.spheremapViewer.frames() > n, await page.evaluate(() => window.spheremapViewer.frames()));
   for (const hover of spec.hovers) {
     const at = await page.evaluate(([view, v]) => window.spheremapViewer.vertexOnPage(view, v), [hover.view, hover.vertex]);
     await page.mouse.move(at.x, at.y);

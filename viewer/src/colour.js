@@ -13,7 +13,7 @@ export function colourIndex(scale, lo, hi, value) {
   if (Number.isNaN(value)) return -1;
   if (scale === 'categorical') {
     const k = roundHalfAway(value);
-    return k >= 0 && k < TABLE_SIZE ? k : -1;
+    return k >= 0 && k < TABLE_SIZE ? Math.abs(k) : -1;  // abs: -0 (from -0.4) is class 0
   }
   if (!(hi > lo)) return TABLE_SIZE / 2;
   const t = (value - lo) / (hi - lo);

@@ -268,6 +268,8 @@ function testHook(viewer) {
       return { surface: counts[0], sphere: counts[1], width, height };
     },
     colourIndex,
+    // Turns the camera to look from direction `towards` (from the centre) with `up` up.
+    lookAlong: (towards, up) => { views.lookAlong({ towards, up }); views.controls.target.set(0, 0, 0); },
     highlightedVertices: () => viewer.highlighted,
     selectProperty: (i) => viewer.selectProperty(i),
   };

@@ -6,6 +6,7 @@ import {
 } from 'three';
 import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
 import { surfaceMaterial } from './material.js';
+import { orientation } from './orient.js';
 
 export const VIEW_NAMES = ['surface', 'sphere'];
 const BACKGROUND = new Color(0xffffff);
@@ -79,9 +80,7 @@ export class Views {
     this.raycaster = new Raycaster();
     this.needsRender = true;
     this.resize();
-    this.camera.position.set(0, 0, this.fittingDistance());
-    this.camera.up.set(0, 1, 0);
-    this.camera.lookAt(0, 0, 0);
+    this.lookAlong(orientation(this.models[0].positions));
     this.controls = new TrackballControls(this.camera, canvas);
     this.controls.rotateSpeed = 3.0;
     this.controls.zoomSpeed = 1.2;
@@ -92,6 +91,14 @@ export class Views {
     this.controls.saveState?.();
     // The canvas changes size with the window and with the header above it (which wraps as it fills).
     new ResizeObserver(() => this.resize()).observe(canvas);
+  }
+
+  // Puts the camera on the side `towards` (from the centre), at the fitting distance, `up` up.
+  lookAlong({ towards, up }) {
+    this.camera.position.set(...towards).normalize().multiplyScalar(this.fittingDistance());
+    this.camera.up.set(...up).normalize();
+    this.camera.lookAt(0, 0, 0);
+    this.needsRender = true;
   }
 
   // The camera distance at which the unit ball fills ~80% of the view's height and width.
