@@ -1,0 +1,90 @@
+// The viewer's data for a mapped surface (see viewer_data.hpp).
+#include "spheremap/render/viewer_data.hpp"
+
+#include <map>
+#include <stdexcept>
+
+namespace spheremap {
+namespace {
+
+const TextAttribute* text(const Mesh& mesh, const char* name) {
+  const auto found = mesh.text_attributes.find(name);
+  return found == mesh.text_attributes.end() ? nullptr : &found->second;
+}
+
+template <typename T>
+const std::vector<T>* values(const std::map<std::string, std::vector<T>>& attributes, const char* name) {
+  const auto found = attributes.find(name);
+  return found == attributes.end() ? nullptr : &found->second;
+}
+
+// One atom per distinct atomid, named from the first vertex that carries it.
+void add_atoms(const Mesh& surface, ViewerData& data) {
+  const std::vector<std::int32_t>* atom_ids = values(surface.integer_attributes, "atomid");
+  if (atom_ids == nullptr) return;
+  const TextAttribute* chain = text(surface, "vertex_chain");
+  const TextAttribute* residue = text(surface, "vertex_residue_name");
+  const TextAttribute* insertion = text(surface, "vertex_insertion_code");
+  const TextAttribute* atom_name = text(surface, "vertex_atom_name");
+  const std::vector<std::int32_t>* number = values(surface.integer_attributes, "vertex_residue_number");
+  const auto text_of = [](const TextAttribute* a, std::size_t v) { return a ? a->at(v) : std::string(); };
+  std::map<std::int32_t, std::int32_t> index_of;
+  data.vertex_atoms.reserve(surface.vertex_count());
+  for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
+    const auto [it, inserted] = index_of.try_emplace((*atom_ids)[v], static_cast<std::int32_t>(data.atoms.size()));
+    if (inserted)
+      data.atoms.push_back({text_of(chain, v), text_of(residue, v), number ? (*number)[v] : 0, text_of(insertion, v),
+                            text_of(atom_name, v)});
+    data.vertex_atoms.push_back(it->second);
+  }
+}
+
+ViewerProperty octant_property(const std::vector<Vec3>& sphere) {
+  ViewerProperty p{"octant", "", ScaleKind::categorical, {0, 255}, {},
+                   {"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z", "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"}};
+  p.values.reserve(sphere.size());
+  // A zero coordinate counts as +, as in the octant metrics.
+  for (const Vec3& s : sphere) p.values.push_back(static_cast<float>((s[0] < 0) + 2 * (s[1] < 0) + 4 * (s[2] < 0)));
+  return p;
+}
+
+template <typename T>
+ViewerProperty value_property(std::string name, std::string unit, ScaleKind scale, const std::vector<T>& source) {
+  ViewerProperty p{std::move(name), std::move(unit), scale, {}, {}, {}};
+  p.values.assign(source.begin(), source.end());
+  p.range = data_range(scale, p.values);
+  return p;
+}
+
+void add_properties(const Mesh& surface, const std::vector<Vec3>& sphere, ViewerData& data) {
+  data.properties.push_back(octant_property(sphere));
+  if (const TextAttribute* chain = text(surface, "vertex_chain")) {
+    ViewerProperty p = value_property("chain", "", ScaleKind::categorical, chain->codes);
+    p.categories = chain->dictionary;
+    data.properties.push_back(std::move(p));
+  }
+  if (const auto* number = values(surface.integer_attributes, "vertex_residue_number"))
+    data.properties.push_back(value_property("residue number", "", ScaleKind::sequential, *number));
+  if (const auto* b = values(surface.real_attributes, "vertex_b_factor"))
+    data.properties.push_back(value_property("B-factor", "Å²", ScaleKind::sequential, *b));
+  if (const auto* charge = values(surface.real_attributes, "vertex_charge"))
+    data.properties.push_back(value_property("charge", "e", ScaleKind::diverging, *charge));
+}
+
+}  // namespace
+
+ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title) {
+  if (sphere.size() != surface.vertex_count())
+    throw std::invalid_argument("viewer_data_for_map: " + std::to_string(sphere.size()) + " sphere points for " +
+                                std::to_string(surface.vertex_count()) + " surface vertices");
+  ViewerData data;
+  data.title = std::move(title);
+  data.surface_positions = surface.positions;
+  data.sphere_positions = sphere;
+  data.triangles = surface.triangles;
+  add_atoms(surface, data);
+  add_properties(surface, sphere, data);
+  return data;
+}
+
+}  // namespace spheremap
