@@ -268,6 +268,11 @@ function testHook(viewer) {
       return { surface: counts[0], sphere: counts[1], width, height };
     },
     colourIndex,
+    // The vertex picked at page point (x, y), or -1.
+    pickAt: (x, y) => {
+      const r = views.canvas.getBoundingClientRect();
+      return views.pick(x - r.left, y - r.top)?.vertex ?? -1;
+    },
     // Turns the camera to look from direction `towards` (from the centre) with `up` up.
     lookAlong: (towards, up) => { views.lookAlong({ towards, up }); views.controls.target.set(0, 0, 0); },
     highlightedVertices: () => viewer.highlighted,
