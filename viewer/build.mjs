@@ -50,7 +50,9 @@ if (/[^\x09\x0a\x0d\x20-\x7e]/.test(page)) fail('the page must be printable ASCI
 for (const placeholder of ['{{SPHEREMAP_TITLE}}', '{{SPHEREMAP_DATA}}']) {
   if (page.split(placeholder).length !== 2) fail(`the page must hold ${placeholder} exactly once`);
 }
-if (page.indexOf('{{SPHEREMAP_TITLE}}') > page.indexOf('{{SPHEREMAP_DATA}}')) fail('the title must come before the data');
+if (page.indexOf('{{SPHEREMAP_TITLE}}') > page.indexOf('{{SPHEREMAP_DATA}}')) {
+  fail('the title must come before the data');
+}
 
 // Raw string literals of at most 8000 characters each (compilers limit one literal's length), concatenated.
 const delimiter = 'spheremap_page';

@@ -90,7 +90,8 @@ std::string escape_json_for_script(const std::string& json) {
 std::string data_elements(const ViewerData& data) {
   const detail::ViewerPayload payload = detail::pack_viewer_payload(data);
   // Base64 has no "<", so the blob needs no further escaping.
-  return "<script type=\"application/json\" id=\"spheremap-manifest\">" + escape_json_for_script(payload.manifest_json) +
+  return "<script type=\"application/json\" id=\"spheremap-manifest\">" +
+         escape_json_for_script(payload.manifest_json) +
          "</script>\n<script type=\"application/octet-stream\" id=\"spheremap-data\">" +
          detail::base64_encode(detail::deflate_zlib(payload.blob)) + "</script>";
 }
@@ -116,7 +117,8 @@ std::string fill_template(std::string_view page, const std::string& title, const
 
 std::string viewer_html(const ViewerData& data) {
   check(data);
-  return fill_template(detail::viewer_page_template(), escape_html(detail::valid_utf8(data.title)), data_elements(data));
+  const std::string title = escape_html(detail::valid_utf8(data.title));
+  return fill_template(detail::viewer_page_template(), title, data_elements(data));
 }
 
 void write_viewer_html(const std::filesystem::path& path, const ViewerData& data) {

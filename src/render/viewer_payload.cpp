@@ -110,7 +110,8 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
   for (std::size_t v = 0; v < n; ++v) out.i32(data.vertex_atoms.empty() ? -1 : data.vertex_atoms[v]);
   pack_atoms(out, strings, data.atoms);
   Json properties = Json::array();
-  for (std::size_t i = 0; i < data.properties.size(); ++i) properties.push_back(pack_property(out, data.properties[i], i));
+  for (std::size_t i = 0; i < data.properties.size(); ++i)
+    properties.push_back(pack_property(out, data.properties[i], i));
 
   const Json manifest{{"format", "spheremap-viewer"},
                       {"version", 1},
@@ -118,7 +119,8 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
                       {"vertex_count", n},
                       {"triangle_count", data.triangles.size()},
                       {"atom_count", data.atoms.size()},
-                      {"missing_colour", Json::array({kMissingValueColour.r, kMissingValueColour.g, kMissingValueColour.b})},
+                      {"missing_colour",
+                       Json::array({kMissingValueColour.r, kMissingValueColour.g, kMissingValueColour.b})},
                       {"properties", properties},
                       {"strings", strings.strings()},
                       {"arrays", arrays}};
@@ -128,9 +130,11 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
 std::string deflate_zlib(const std::string& bytes) {
   uLongf size = compressBound(static_cast<uLong>(bytes.size()));
   std::string out(size, '\0');
-  const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(bytes.data()),
-                               static_cast<uLong>(bytes.size()), Z_DEFAULT_COMPRESSION);
-  if (status != Z_OK) throw std::runtime_error("zlib could not compress the viewer's data (status " + std::to_string(status) + ")");
+  const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size,
+                               reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uLong>(bytes.size()),
+                               Z_DEFAULT_COMPRESSION);
+  if (status != Z_OK)
+    throw std::runtime_error("zlib could not compress the viewer's data (status " + std::to_string(status) + ")");
   out.resize(size);
   return out;
 }

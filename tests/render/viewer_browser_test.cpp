@@ -81,7 +81,8 @@ TEST(ViewerBrowser, DrawsPicksAndSearchesInHeadlessChromium) {
       {"outputDir", out.string()},
       {"title", data.title},
       {"hovers", {hover(data, "surface", apex), hover(data, "sphere", on_sphere)}},
-      {"search", {{"query", searched.chain + ":" + std::to_string(searched.residue_number)}, {"highlighted", in_residue}}},
+      {"search",
+       {{"query", searched.chain + ":" + std::to_string(searched.residue_number)}, {"highlighted", in_residue}}},
       {"colourChecks", colour_checks()}};
   std::ofstream(out / "spec.json") << spec.dump(1);
 

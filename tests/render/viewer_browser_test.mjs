@@ -37,18 +37,21 @@ try {
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   // Nothing may be fetched from the network.
   const requests = [];
-  page.on('request', (r) => { if (!r.url().startsWith('file:') && !r.url().startsWith('data:')) requests.push(r.url()); });
+  page.on('request', (r) => {
+    if (!r.url().startsWith('file:') && !r.url().startsWith('data:')) requests.push(r.url());
+  });
 
   await page.goto(pathToFileURL(spec.html).href);
-  await page.waitForFunction(() => window.spheremapViewer && (window.spheremapViewer.ready || window.spheremapViewer.error),
-                             null, { timeout: 60000 });
+  await page.waitForFunction(() => window.spheremapViewer?.ready || window.spheremapViewer?.error, null,
+                             { timeout: 60000 });
   const error = await page.evaluate(() => window.spheremapViewer.error ?? null);
   check(error === null, `the viewer starts${error ? `: ${error}` : ''}`);
   if (error !== null) throw new Error(error);
   await page.waitForFunction(() => window.spheremapViewer.frames() > 3, null, { timeout: 30000 });
   console.log(`     drawn ${Date.now() - started} ms after launch`);
 
-  check(await page.title() === spec.title, `the page's title is the data's title (${JSON.stringify(await page.title())})`);
+  const title = await page.title();
+  check(title === spec.title, `the page's title is the data's title (${JSON.stringify(title)})`);
   const painted = await page.evaluate(() => window.spheremapViewer.paintedPixels());
   const half = (painted.width * painted.height) / 2;
   check(painted.surface > 0.05 * half && painted.sphere > 0.05 * half,
@@ -57,9 +60,11 @@ try {
 
   // The picks below are chosen in plain view from +z: look from there (the page opens "oriented").
   await page.evaluate(() => window.spheremapViewer.lookAlong([0, 0, 1], [0, 1, 0]));
-  await page.waitForFunction((n) => window.spheremapViewer.frames() > n, await page.evaluate(() => window.spheremapViewer.frames()));
+  const frames = await page.evaluate(() => window.spheremapViewer.frames());
+  await page.waitForFunction((n) => window.spheremapViewer.frames() > n, frames);
   for (const hover of spec.hovers) {
-    const at = await page.evaluate(([view, v]) => window.spheremapViewer.vertexOnPage(view, v), [hover.view, hover.vertex]);
+    const at = await page.evaluate(([view, v]) => window.spheremapViewer.vertexOnPage(view, v),
+                                   [hover.view, hover.vertex]);
     await page.mouse.move(at.x, at.y);
     await page.waitForFunction((v) => document.getElementById('pick-where').textContent.startsWith(`vertex ${v} `),
                                hover.vertex, { timeout: 10000 }).catch(() => {});
@@ -69,13 +74,16 @@ try {
       value: document.getElementById('pick-value').textContent,
       where: document.getElementById('pick-where').textContent,
     }));
-    check(label.where.startsWith(`vertex ${hover.vertex} `), `hover on the ${hover.view} at vertex ${hover.vertex} picks it (${label.where})`);
+    check(label.where.startsWith(`vertex ${hover.vertex} `),
+          `hover on the ${hover.view} at vertex ${hover.vertex} picks it (${label.where})`);
     check(label.residue === hover.residue && label.atom === `atom ${hover.atom}`,
-          `the label names ${hover.residue}, atom ${hover.atom} (shows "${label.residue}", "${label.atom}", "${label.value}")`);
+          `the label names ${hover.residue}, atom ${hover.atom} ` +
+          `(shows "${label.residue}", "${label.atom}", "${label.value}")`);
     // Both markers sit on the vertex, in both views.
     const markers = await page.evaluate(() => window.spheremapViewer.markersOnPage());
     for (const [i, view] of ['surface', 'sphere'].entries()) {
-      const expected = await page.evaluate(([name, v]) => window.spheremapViewer.vertexOnPage(name, v), [view, hover.vertex]);
+      const expected = await page.evaluate(([name, v]) => window.spheremapViewer.vertexOnPage(name, v),
+                                           [view, hover.vertex]);
       const off = markers[i] ? Math.hypot(markers[i].x - expected.x, markers[i].y - expected.y) : Infinity;
       check(off < 4, `the ${view} view marks the point (${off.toFixed(2)} px from the vertex)`);
     }
@@ -87,12 +95,14 @@ try {
   const highlighted = await page.evaluate(() => window.spheremapViewer.highlightedVertices());
   const result = await page.evaluate(() => document.getElementById('search-result').textContent);
   check(highlighted === spec.search.highlighted,
-        `the search "${spec.search.query}" highlights ${highlighted} vertices, expected ${spec.search.highlighted} ("${result}")`);
+        `the search "${spec.search.query}" highlights ${highlighted} vertices, ` +
+        `expected ${spec.search.highlighted} ("${result}")`);
   await page.waitForFunction(() => window.spheremapViewer.frames() > 0);
   await page.screenshot({ path: join(spec.outputDir, 'viewer-search.png') });
 
-  const indices = await page.evaluate((checks) => checks.map((c) => window.spheremapViewer.colourIndex(c.scale, c.lo, c.hi,
-    c.value === null ? NaN : c.value)), spec.colourChecks);
+  const indices = await page.evaluate((checks) => checks.map(
+    (c) => window.spheremapViewer.colourIndex(c.scale, c.lo, c.hi, c.value === null ? NaN : c.value)),
+  spec.colourChecks);
   const wrong = spec.colourChecks.filter((c, i) => indices[i] !== c.index);
   check(wrong.length === 0, `the page's colour rule equals the C++ one on ${spec.colourChecks.length} values` +
         (wrong.length ? `; differs on ${JSON.stringify(wrong.slice(0, 3))}` : ''));

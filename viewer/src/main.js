@@ -199,7 +199,8 @@ class Viewer {
         } else if (found.vertices.length === 0) {
           $('search-result').textContent = `${residueLabel(this.data.atoms, found.atom)} is buried: not on the surface`;
         } else {
-          $('search-result').textContent = `${residueLabel(this.data.atoms, found.atom)}: ${found.vertices.length} surface points`;
+          const label = residueLabel(this.data.atoms, found.atom);
+          $('search-result').textContent = `${label}: ${found.vertices.length} surface points`;
           // Turn the residue's patch on the sphere (where nothing hides it) towards the viewer; the surface
           // turns with it. Mark the patch's middle on both views.
           this.views.face(this.views.meanNormal(1, found.vertices));
@@ -246,9 +247,13 @@ function testHook(viewer) {
     ready: true,
     frames: () => viewer.frames,
     // Page coordinates (CSS pixels) of vertex v in view 'surface' or 'sphere'.
-    vertexOnPage: (view, v) => canvasPoint(views.project(VIEW_NAMES.indexOf(view), views.vertexPosition(VIEW_NAMES.indexOf(view), v))),
+    vertexOnPage: (view, v) => {
+      const i = VIEW_NAMES.indexOf(view);
+      return canvasPoint(views.project(i, views.vertexPosition(i, v)));
+    },
     // Page coordinates of the two markers, or null when hidden.
-    markersOnPage: () => views.models.map((m, i) => (m.marker.visible ? canvasPoint(views.project(i, m.marker.position)) : null)),
+    markersOnPage: () => views.models.map(
+      (m, i) => (m.marker.visible ? canvasPoint(views.project(i, m.marker.position)) : null)),
     // Draws a frame and counts, per view, the pixels that differ from the background.
     paintedPixels: () => {
       views.render();

@@ -20,8 +20,8 @@ function normalized(positions) {
   for (let v = 0; v < n; ++v) for (let k = 0; k < 3; ++k) centre[k] += positions[3 * v + k] / n;
   let radius = 0;
   for (let v = 0; v < n; ++v) {
-    const dx = positions[3 * v] - centre[0], dy = positions[3 * v + 1] - centre[1], dz = positions[3 * v + 2] - centre[2];
-    radius = Math.max(radius, Math.hypot(dx, dy, dz));
+    const dx = positions[3 * v] - centre[0], dy = positions[3 * v + 1] - centre[1];
+    radius = Math.max(radius, Math.hypot(dx, dy, positions[3 * v + 2] - centre[2]));
   }
   const scale = radius > 0 ? 1 / radius : 1;
   const out = new Float32Array(positions.length);
@@ -75,7 +75,8 @@ export class Views {
     // Shared by both models: one colour entry and one highlight per vertex.
     this.entries = new BufferAttribute(new Float32Array(data.vertexCount), 1);
     this.highlight = new BufferAttribute(new Float32Array(data.vertexCount), 1);
-    this.models = [data.surface, data.sphere].map((p) => makeModel(p, data.triangles, this.material, this.entries, this.highlight));
+    this.models = [data.surface, data.sphere].map(
+      (p) => makeModel(p, data.triangles, this.material, this.entries, this.highlight));
     this.camera = new PerspectiveCamera(FIELD_OF_VIEW, 1, 0.01, 100);
     this.raycaster = new Raycaster();
     this.needsRender = true;

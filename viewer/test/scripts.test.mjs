@@ -44,7 +44,8 @@ test('a residue query finds the vertices of its atoms', () => {
   const strings = ['A', 'GLY', '', 'CA', 'B', 'N'];
   const atoms = {
     count: 3, strings,
-    chain: [0, 0, 4], residueName: [1, 1, 1], residueNumber: [45, 45, 45], insertionCode: [2, 2, 2], atomName: [3, 5, 3],
+    chain: [0, 0, 4], residueName: [1, 1, 1], residueNumber: [45, 45, 45], insertionCode: [2, 2, 2],
+    atomName: [3, 5, 3],
   };
   const data = { atoms, vertexAtoms: Int32Array.from([0, 2, 1, -1, 1]) };
   assert.deepEqual(findResidueVertices(data, parseResidueQuery('A:45')), { vertices: [0, 2, 4], atom: 0 });
