@@ -17,7 +17,7 @@ enum class ScaleKind : std::uint8_t {
   categorical,  // whole numbers naming classes (chain, octant): one distinct colour per class
 };
 
-/// "sequential", "diverging" or "categorical".
+/// "sequential", "diverging" or "categorical". Never throws.
 std::string_view to_string(ScaleKind kind);
 
 /// An 8-bit sRGB colour.
@@ -32,7 +32,8 @@ using ColourTable = std::array<Rgb8, kColourTableSize>;
 /// The colour of a missing value (NaN) on every scale: mid grey, in none of the tables' ramps.
 inline constexpr Rgb8 kMissingValueColour{128, 128, 128};
 
-/// matplotlib's viridis (van der Walt and Smith), its published 256 entries rounded to 8 bits.
+/// matplotlib's viridis (van der Walt and Smith), its published 256 entries rounded to 8 bits. The tables below
+/// are built once, on first use; none of these functions throws.
 const ColourTable& viridis_table();
 
 /// ColorBrewer's 9-class RdBu (Brewer), from red (entry 0) through near-white to blue (entry 255),
@@ -55,15 +56,15 @@ struct ValueRange {
 /// entry floor(256 t) clamped to [0, 255] (so lo..hi is cut into 256 equal bins; +-infinity saturate);
 /// a range with hi <= lo gives entry 128 for every value. Categorical: the value rounded to the nearest
 /// whole number, -1 if that is outside [0, 255]; `range` is not used. NaN gives -1 on every scale.
-/// The viewer's script applies the same rule (viewer/src/colour.js); keep them equal.
+/// The viewer's script applies the same rule (viewer/src/colour.js); keep them equal. Never throws.
 int colour_index(ScaleKind kind, const ValueRange& range, double value);
 
-/// colour_table(kind)[colour_index(...)], or kMissingValueColour for -1.
+/// colour_table(kind)[colour_index(...)], or kMissingValueColour for -1. Never throws.
 Rgb8 colour_of(ScaleKind kind, const ValueRange& range, double value);
 
 /// A default range for `values` (NaN ignored): sequential [min, max]; diverging [-m, m] with m the largest
 /// |value|; categorical [0, 255]. With no finite value, or all values equal (m = 0), the range is widened
-/// to a width of 1 around them ([-1, 1] for diverging), so that hi > lo always.
+/// to a width of 1 around them ([-1, 1] for diverging), so that hi > lo always. Never throws.
 ValueRange data_range(ScaleKind kind, std::span<const float> values);
 
 }  // namespace spheremap
