@@ -13,7 +13,7 @@
 #include <random>
 
 #include "spheremap/geometry/normals.hpp"
-#include "spheremap/pipeline.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/properties/coulomb.hpp"
 #include "spheremap/properties/pdb2pqr.hpp"
 

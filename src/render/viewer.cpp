@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/io/atomic_file.hpp"
 #include "viewer_page.hpp"
 #include "viewer_payload.hpp"
 

@@ -4,6 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "spheremap/attributes.hpp"
+
 namespace spheremap {
 namespace {
 
@@ -20,13 +22,13 @@ const std::vector<T>* values(const std::map<std::string, std::vector<T>>& attrib
 
 // One atom per distinct atomid, named from the first vertex that carries it.
 void add_atoms(const Mesh& surface, ViewerData& data) {
-  const std::vector<std::int32_t>* atom_ids = values(surface.integer_attributes, "atomid");
+  const std::vector<std::int32_t>* atom_ids = values(surface.integer_attributes, attributes::kAtomId);
   if (atom_ids == nullptr) return;
-  const TextAttribute* chain = text(surface, "vertex_chain");
-  const TextAttribute* residue = text(surface, "vertex_residue_name");
-  const TextAttribute* insertion = text(surface, "vertex_insertion_code");
-  const TextAttribute* atom_name = text(surface, "vertex_atom_name");
-  const std::vector<std::int32_t>* number = values(surface.integer_attributes, "vertex_residue_number");
+  const TextAttribute* chain = text(surface, attributes::kChain);
+  const TextAttribute* residue = text(surface, attributes::kResidueName);
+  const TextAttribute* insertion = text(surface, attributes::kInsertionCode);
+  const TextAttribute* atom_name = text(surface, attributes::kAtomName);
+  const std::vector<std::int32_t>* number = values(surface.integer_attributes, attributes::kResidueNumber);
   const auto text_of = [](const TextAttribute* a, std::size_t v) { return a ? a->at(v) : std::string(); };
   std::map<std::int32_t, std::int32_t> index_of;
   data.vertex_atoms.reserve(surface.vertex_count());
@@ -58,16 +60,16 @@ ViewerProperty value_property(std::string name, std::string unit, ScaleKind scal
 
 void add_properties(const Mesh& surface, const std::vector<Vec3>& sphere, ViewerData& data) {
   data.properties.push_back(octant_property(sphere));
-  if (const TextAttribute* chain = text(surface, "vertex_chain")) {
+  if (const TextAttribute* chain = text(surface, attributes::kChain)) {
     ViewerProperty p = value_property("chain", "", ScaleKind::categorical, chain->codes);
     p.categories = chain->dictionary;
     data.properties.push_back(std::move(p));
   }
-  if (const auto* number = values(surface.integer_attributes, "vertex_residue_number"))
+  if (const auto* number = values(surface.integer_attributes, attributes::kResidueNumber))
     data.properties.push_back(value_property("residue number", "", ScaleKind::sequential, *number));
-  if (const auto* b = values(surface.real_attributes, "vertex_b_factor"))
+  if (const auto* b = values(surface.real_attributes, attributes::kBFactor))
     data.properties.push_back(value_property("B-factor", "Å²", ScaleKind::sequential, *b));
-  if (const auto* charge = values(surface.real_attributes, "vertex_charge"))
+  if (const auto* charge = values(surface.real_attributes, attributes::kCharge))
     data.properties.push_back(value_property("charge", "e", ScaleKind::diverging, *charge));
 }
 

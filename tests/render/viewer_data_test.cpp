@@ -5,7 +5,8 @@
 
 #include <stdexcept>
 
-#include "spheremap/shapes.hpp"
+#include "spheremap/attributes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
 namespace {
@@ -13,9 +14,9 @@ namespace {
 Mesh surface_with_provenance() {
   Mesh mesh = make_icosphere(2);
   const std::size_t n = mesh.vertex_count();
-  auto& atom = mesh.integer_attributes["atomid"];
-  auto& number = mesh.integer_attributes["vertex_residue_number"];
-  auto& b = mesh.real_attributes["vertex_b_factor"];
+  auto& atom = mesh.integer_attributes[attributes::kAtomId];
+  auto& number = mesh.integer_attributes[attributes::kResidueNumber];
+  auto& b = mesh.real_attributes[attributes::kBFactor];
   TextAttribute chain{{"A", "B"}, {}}, name{{"CA", "N"}, {}}, residue{{"GLY"}, {}}, insertion{{"", "A"}, {}};
   for (std::size_t v = 0; v < n; ++v) {
     atom.push_back(static_cast<std::int32_t>(100 - v % 7));  // atom ids need not start at 0 or be in order
@@ -26,10 +27,10 @@ Mesh surface_with_provenance() {
     residue.codes.push_back(0);
     insertion.codes.push_back(v % 7 == 6 ? 1 : 0);
   }
-  mesh.text_attributes["vertex_chain"] = chain;
-  mesh.text_attributes["vertex_atom_name"] = name;
-  mesh.text_attributes["vertex_residue_name"] = residue;
-  mesh.text_attributes["vertex_insertion_code"] = insertion;
+  mesh.text_attributes[attributes::kChain] = chain;
+  mesh.text_attributes[attributes::kAtomName] = name;
+  mesh.text_attributes[attributes::kResidueName] = residue;
+  mesh.text_attributes[attributes::kInsertionCode] = insertion;
   return mesh;
 }
 
@@ -74,7 +75,7 @@ TEST(ViewerData, PropertiesAreTheOnesTheSurfaceCarries) {
 
 TEST(ViewerData, APlainMeshHasNoAtomsAndOnlyOctants) {
   Mesh mesh = make_icosphere(1);
-  mesh.real_attributes["vertex_charge"] = std::vector<double>(mesh.vertex_count(), -0.5);
+  mesh.real_attributes[attributes::kCharge] = std::vector<double>(mesh.vertex_count(), -0.5);
   const ViewerData data = viewer_data_for_map(mesh, mesh.positions, "mesh");
   EXPECT_TRUE(data.atoms.empty());
   EXPECT_TRUE(data.vertex_atoms.empty());

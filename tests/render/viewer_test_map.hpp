@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "spheremap/render/viewer.hpp"
-#include "spheremap/shapes.hpp"
+#include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap::testing_support {
 
