@@ -145,15 +145,6 @@ ColourTable make_categorical() {
 
 }  // namespace
 
-std::string_view to_string(ScaleKind kind) {
-  switch (kind) {
-    case ScaleKind::sequential: return "sequential";
-    case ScaleKind::diverging: return "diverging";
-    case ScaleKind::categorical: return "categorical";
-  }
-  return "sequential";
-}
-
 const ColourTable& viridis_table() {
   static const ColourTable table = make_viridis();
   return table;

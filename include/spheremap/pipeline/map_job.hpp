@@ -10,6 +10,7 @@
 #include "spheremap/metrics/distortion.hpp"
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/pipeline/molecular_surface.hpp"
+#include "spheremap/properties/property.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/surface/ses.hpp"
 #include "spheremap/topology/prepare.hpp"
@@ -56,6 +57,8 @@ struct MapJobResult {
   double simplify_seconds = 0;
   SphereMap map;
   DistortionMetrics metrics;
+  /// Per-vertex properties of prepared.mesh (electrostatics, hydrophobicity, ...), in the registry's order.
+  std::vector<SurfaceProperty> properties;
   double read_seconds = 0, prepare_seconds = 0, metrics_seconds = 0;
 };
 

@@ -8,17 +8,9 @@
 #include <span>
 #include <string_view>
 
+#include "spheremap/properties/property.hpp"
+
 namespace spheremap {
-
-/// How a property's values are coloured.
-enum class ScaleKind : std::uint8_t {
-  sequential,   // ordered values (B-factor, hydrophobicity, curvature): viridis
-  diverging,    // signed values around 0 (electrostatics): red (low) - white - blue (high)
-  categorical,  // whole numbers naming classes (chain, octant): one distinct colour per class
-};
-
-/// "sequential", "diverging" or "categorical". Never throws.
-std::string_view to_string(ScaleKind kind);
 
 /// An 8-bit sRGB colour.
 struct Rgb8 {
@@ -46,11 +38,6 @@ const ColourTable& categorical_table();
 /// The table of a scale kind (one of the three above).
 const ColourTable& colour_table(ScaleKind kind);
 
-/// The values a continuous scale spans: lo gets the first entry, hi the last; values outside saturate.
-struct ValueRange {
-  double lo = 0;
-  double hi = 1;
-};
 
 /// The table entry of `value`, or -1 for a missing value. Continuous scales: t = (value - lo) / (hi - lo),
 /// entry floor(256 t) clamped to [0, 255] (so lo..hi is cut into 256 equal bins; +-infinity saturate);
