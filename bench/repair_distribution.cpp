@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     const std::clock_t cpu_start = std::clock();
     try {
       const auto molecule = spheremap::read_structure(file);
-      spheremap::TopologyRepair repair;
+      spheremap::HandleRepairReport repair;
       const auto result = spheremap::repaired_surface(molecule.atoms, surface, false, &repair);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
@@ -72,11 +72,12 @@ int main(int argc, char** argv) {
       const int genus_after = result.components.empty() ? 0 : result.components.front().genus;
       if (genus_after != 0) ++failed;
       if (repair.genus_before != 0) ++repaired, changes.push_back(std::abs(change));
-      if (repair.method == "per-handle") ++per_handle;
+      if (repair.method == spheremap::RepairMethod::kPerHandle) ++per_handle;
       int cuts = 0, fills = 0;
-      for (const auto& c : repair.changes) (c.kind == "cut" ? cuts : fills) += 1;
+      for (const auto& c : repair.closures) (c.kind == spheremap::ClosureKind::kCut ? cuts : fills) += 1;
       std::printf("| %s | %zu | %d | %s | %d | %d | %lld | %.1f | %.1f | %+.1f | %+.3f | %.1f | %d | %.1f | %.2f | %.1f |\n",
-                  name.c_str(), molecule.atoms.size(), repair.genus_before, repair.method.c_str(), cuts, fills,
+                  name.c_str(), molecule.atoms.size(), repair.genus_before, spheremap::to_string(repair.method), cuts,
+                  fills,
                   static_cast<long long>(repair.samples_changed), repair.volume_changed, repair.area_before, area, change,
                   repair.genus_before > 0 ? area / repair.genus_before : 0.0, genus_after, seconds, repair_seconds, cpu);
     } catch (const std::exception& e) {

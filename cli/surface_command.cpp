@@ -13,7 +13,7 @@ namespace {
 
 // What `surface` prints: sizes, components, simplification, warnings, repair, timings.
 void print_surface(const std::string& output, const MapJobOptions& options, const MolecularSurface& result,
-                   const TopologyRepair& repair, const SimplifyReport& simplification,
+                   const HandleRepairReport& repair, const SimplifyReport& simplification,
                    const StructureReport& structure) {
   const Mesh& surface = result.mesh;
   double area = 0;
@@ -36,11 +36,12 @@ void print_surface(const std::string& output, const MapJobOptions& options, cons
                              simplification.area_before, simplification.area_after,
                              simplification.max_vertex_distance);
   for (const auto& warning : structure.warnings) std::cout << "  warning: " << warning << "\n";
-  if (repair.method != "none")
+  if (repair.method != RepairMethod::kNone)
     std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
                              "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
-                             repair.method, repair.genus_before, repair.changes.size(), repair.samples_changed,
-                             repair.area_before, repair.area_after, 100 * (repair.area_after / repair.area_before - 1));
+                             to_string(repair.method), repair.genus_before, repair.closures.size(),
+                             repair.samples_changed, repair.area_before, repair.area_after,
+                             100 * (repair.area_after / repair.area_before - 1));
   else if (repair.genus_before != 0)
     std::cout << fmt::format("  outer surface genus {} (--keep-topology: not repaired)\n", repair.genus_before);
   std::string stages;
@@ -71,7 +72,7 @@ struct SurfaceCommand {
   int run() {
     structure.apply(options);
     const Molecule molecule = read_structure(input, options.structure);
-    TopologyRepair repair;
+    HandleRepairReport repair;
     MolecularSurface result;
     try {
       result = repaired_surface(molecule.atoms, options.surface, options.keep_topology, &repair);

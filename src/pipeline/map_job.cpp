@@ -244,14 +244,14 @@ std::string structure_text(const MapJobResult& result) {
   std::string text = fmt::format("  structure: {} atoms; molecular surface: outer surface, {} cavities, {} detached "
                                  "pieces (in report.json); the {} is mapped\n",
                                  result.atoms, cavities, pieces, outer_mapped ? "outer surface" : "chosen component");
-  const TopologyRepair& t = result.topology;
-  if (t.method != "none") {
+  const HandleRepairReport& t = result.topology;
+  if (t.method != RepairMethod::kNone) {
     std::int64_t cuts = 0, fills = 0;
-    for (const auto& c : t.changes) (c.kind == "cut" ? cuts : fills) += 1;
+    for (const auto& c : t.closures) (c.kind == ClosureKind::kCut ? cuts : fills) += 1;
     text += fmt::format("  handle repair ({}): genus {} -> 0, {} handle(s) cut, {} tunnel(s) filled ({} grid "
                         "samples, {:.1f} Å³), outer area {:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
-                        t.method, t.genus_before, cuts, fills, t.samples_changed, t.volume_changed, t.area_before,
-                        t.area_after, 100 * (t.area_after / t.area_before - 1));
+                        to_string(t.method), t.genus_before, cuts, fills, t.samples_changed, t.volume_changed,
+                        t.area_before, t.area_after, 100 * (t.area_after / t.area_before - 1));
   }
   for (const auto& warning : result.structure.warnings) text += fmt::format("  warning: {}\n", warning);
   return text;

@@ -13,7 +13,7 @@
 #include "detail.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/surface/contour.hpp"
-#include "spheremap/surface/handles.hpp"
+#include "spheremap/repair/handle_repair.hpp"
 #include "spheremap/surface/nearest_atoms.hpp"
 #include "spheremap/surface/provenance.hpp"
 #include "../util/stage_timer.hpp"
@@ -90,20 +90,20 @@ std::vector<std::string> residues_near_samples(const Grid3<T>& field, const std:
 }
 
 template <typename T>
-HandleChangeReport describe_change(const Grid3<T>& field, bool filled, const std::vector<std::int64_t>& samples,
-                                   double area_change, int handles_removed, const std::vector<Atom>& atoms,
-                                   double reach) {
-  HandleChangeReport change;
-  change.kind = filled ? "fill" : "cut";
-  change.area_change = area_change;
-  change.handles_removed = handles_removed;
-  change.samples = static_cast<std::int64_t>(samples.size());
-  change.volume = static_cast<double>(samples.size()) * std::pow(field.spacing, 3);
+ClosureReport describe_closure(const Grid3<T>& field, const Closure& closure, const std::vector<Atom>& atoms,
+                               double reach) {
+  const auto& samples = closure.samples;
+  ClosureReport report;
+  report.kind = closure.kind;
+  report.area_change = closure.area_change;
+  report.handles_removed = closure.handles_removed;
+  report.samples = static_cast<std::int64_t>(samples.size());
+  report.volume = static_cast<double>(samples.size()) * std::pow(field.spacing, 3);
   const auto [nx, ny, nz] = field.size;
-  for (const auto s : samples) change.centre = change.centre + field.point(s % nx, (s / nx) % ny, s / (nx * ny));
-  if (!samples.empty()) change.centre = (1.0 / static_cast<double>(samples.size())) * change.centre;
-  change.lining_residues = residues_near_samples(field, samples, atoms, reach);
-  return change;
+  for (const auto s : samples) report.centre = report.centre + field.point(s % nx, (s / nx) % ny, s / (nx * ny));
+  if (!samples.empty()) report.centre = (1.0 / static_cast<double>(samples.size())) * report.centre;
+  report.lining_residues = residues_near_samples(field, samples, atoms, reach);
+  return report;
 }
 
 std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const std::vector<MeshComponent>& components,
@@ -140,10 +140,10 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
 }  // namespace
 
 MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                                  TopologyRepair* repair, bool full_provenance) {
+                                  HandleRepairReport* repair, bool full_provenance) {
   MolecularSurface result;
-  TopologyRepair local;
-  TopologyRepair& report = repair ? *repair : local;
+  HandleRepairReport local;
+  HandleRepairReport& report = repair ? *repair : local;
   detail::StageTimer timer("surface", &result.timings);
   Mesh mesh;
   // The components of the final contour, when a step computed them already (adding provenance changes
@@ -168,22 +168,18 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     timer.lap("contour");
     if (!keep_topology && report.genus_before != 0) {
       mesh = Mesh{};  // the repair needs the memory; its last genus check contours the repaired field
-      GenusRepair fix =
+      OuterGenusRepair fix =
           repair_outer_genus(field, 0.0, report.genus_before, surface.threads, surface.contour_minimum_fraction, mesh);
       double largest_radius = 0;
       for (const auto& a : atoms) largest_radius = std::max(largest_radius, a.radius);
       const double reach = largest_radius + surface.probe + 2 * surface.grid;
       final_components = std::move(fix.final_components);
       report.method = fix.method;
-      report.rounds = fix.rounds;  // 0 unless "per-handle"
+      report.rounds = fix.rounds;  // 0 unless kPerHandle
       report.samples_changed = fix.samples_changed;
       report.volume_changed = static_cast<double>(fix.samples_changed) * std::pow(surface.grid, 3);
-      for (const auto& change : fix.per_handle.changes)
-        report.changes.push_back(describe_change(field, change.filled, change.samples, change.area_change,
-                                                 change.euler_change, atoms, reach));
-      if (!fix.global.removed_samples.empty())
-        report.changes.push_back(describe_change(field, fix.global.filled, fix.global.removed_samples,
-                                                 fix.global.area_change, report.genus_before, atoms, reach));
+      for (const auto& closure : fix.closures)
+        report.closures.push_back(describe_closure(field, closure, atoms, reach));
       timer.lap("repair");
     }
   }
@@ -195,7 +191,7 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
   result.components = final_components ? std::move(*final_components) : mesh_components(result.mesh);
   result.reports = describe_components(result.mesh, result.components, atoms);
   report.area_after = result.components.empty() ? 0 : result.components.front().area;
-  if (report.method == "none") report.area_before = report.area_after;
+  if (report.method == RepairMethod::kNone) report.area_before = report.area_after;
   timer.lap("components");
   return result;
 }

@@ -32,10 +32,10 @@ nlohmann::json certificate_json(const Certificate& c) {
           {"collapsed_triangles", head(c.collapsed_triangles)}};
 }
 
-nlohmann::json changes_json(const std::vector<HandleChangeReport>& changes) {
+nlohmann::json closures_json(const std::vector<ClosureReport>& closures) {
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& c : changes)
-    list.push_back({{"kind", c.kind},
+  for (const auto& c : closures)
+    list.push_back({{"kind", to_string(c.kind)},
                     {"samples", c.samples},
                     {"volume", c.volume},
                     {"area_change", c.area_change},
@@ -110,8 +110,8 @@ nlohmann::json options_json(const MapJobResult& result, const MapJobOptions& opt
           {"poles_given", result.map.poles.from_options}};
 }
 
-nlohmann::json topology_repair_json(const TopologyRepair& repair) {
-  return {{"method", repair.method},
+nlohmann::json topology_repair_json(const HandleRepairReport& repair) {
+  return {{"method", to_string(repair.method)},
           {"rounds", repair.rounds},
           {"samples_changed", repair.samples_changed},
           {"volume_changed", repair.volume_changed},
@@ -119,7 +119,7 @@ nlohmann::json topology_repair_json(const TopologyRepair& repair) {
           {"area_after", repair.area_after},
           {"area_changed_percent", repair.area_before > 0 ? 100 * (repair.area_after / repair.area_before - 1) : 0.0},
           {"genus_before", repair.genus_before},
-          {"changes", changes_json(repair.changes)}};
+          {"changes", closures_json(repair.closures)}};
 }
 
 nlohmann::json structure_json(const MapJobResult& result, const MapJobOptions& options) {

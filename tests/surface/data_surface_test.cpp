@@ -28,7 +28,7 @@ TEST_F(DataSurface, EveryStructureGivesAClosedGenusZeroOuterSurface) {
   for (const auto& file : files_) {
     SCOPED_TRACE(file.string());
     const Molecule molecule = read_structure(file);
-    TopologyRepair repair;
+    HandleRepairReport repair;
     const MolecularSurface surface = repaired_surface(molecule.atoms, options, false, &repair);
     testing_support::expect_closed_oriented_manifold(surface.mesh);
     ASSERT_FALSE(surface.components.empty());
@@ -36,7 +36,7 @@ TEST_F(DataSurface, EveryStructureGivesAClosedGenusZeroOuterSurface) {
     EXPECT_EQ(surface.reports.front().kind, SurfaceComponentKind::kOuter);
     if (repair.genus_before != 0) {
       ++repaired;
-      EXPECT_FALSE(repair.changes.empty());
+      EXPECT_FALSE(repair.closures.empty());
       worst_change = std::max(worst_change, std::abs(repair.area_after / repair.area_before - 1));
     }
   }
@@ -58,18 +58,18 @@ TEST_F(DataSurface, HandleRepairChangesLittleAreaWhereTheGreedyRepairChangedMuch
     const Molecule molecule = read_structure(file);
     SurfaceOptions options;
     options.grid = 0.5;
-    TopologyRepair repair;
+    HandleRepairReport repair;
     const MolecularSurface surface = repaired_surface(molecule.atoms, options, false, &repair);
     ASSERT_GT(repair.genus_before, 0);
-    EXPECT_EQ(repair.method, "per-handle");
+    EXPECT_EQ(repair.method, RepairMethod::kPerHandle);
     EXPECT_EQ(surface.components.front().genus, 0);
     const double change = 100 * (repair.area_after / repair.area_before - 1);
     EXPECT_LT(std::abs(change), bound);
-    // Each change reports its area, its lining residues and how many handles it removed; together they
+    // Each closure reports its area, its lining residues and how many handles it removed; together they
     // are the outer surface's change (these repairs touch no other component).
     double sum = 0;
     int handles = 0;
-    for (const auto& c : repair.changes) {
+    for (const auto& c : repair.closures) {
       EXPECT_FALSE(c.lining_residues.empty());
       EXPECT_GT(c.volume, 0);
       sum += c.area_change;
@@ -77,7 +77,8 @@ TEST_F(DataSurface, HandleRepairChangesLittleAreaWhereTheGreedyRepairChangedMuch
     }
     EXPECT_EQ(handles, repair.genus_before);
     EXPECT_NEAR(sum, repair.area_after - repair.area_before, 1e-6 * repair.area_before);
-    std::printf("%s at 0.5 Å: genus %d, %zu changes, outer area %+.3f%%\n", name, repair.genus_before, repair.changes.size(), change);
+    std::printf("%s at 0.5 Å: genus %d, %zu closures, outer area %+.3f%%\n", name, repair.genus_before,
+                repair.closures.size(), change);
   }
 }
 

@@ -46,7 +46,7 @@ struct MapJobResult {
   bool from_structure = false;  // the mesh is the molecular surface of a structure file
   std::int64_t atoms = 0;
   StructureReport structure;
-  TopologyRepair topology;
+  HandleRepairReport topology;
   std::vector<SurfaceComponentReport> components;  // of the molecular surface; the mapped one flagged
   std::int64_t component_index = 0;                // which of them was mapped
   double surface_seconds = 0;

@@ -10,15 +10,16 @@
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/mesh.hpp"
 #include "spheremap/molecule/structure.hpp"
+#include "spheremap/repair/handle_repair.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/surface/ses.hpp"
 #include "spheremap/topology/components.hpp"
 
 namespace spheremap {
 
-/// One handle or tunnel the repair removed.
-struct HandleChangeReport {
-  std::string kind;              // "cut" (a handle cut through) or "fill" (a tunnel spanned)
+/// One closure of the handle repair (a handle cut or a tunnel filled), for the report.
+struct ClosureReport {
+  ClosureKind kind = ClosureKind::kCut;  // to_string: "cut" (a handle cut through) or "fill" (a tunnel spanned)
   std::int64_t samples = 0;      // grid samples moved to the other side
   double volume = 0;             // Å³ (samples x grid³): removed by a cut, added by a fill
   /// Å², what this change did to the area of the contour (every component, almost always the outer
@@ -29,12 +30,13 @@ struct HandleChangeReport {
   std::vector<std::string> lining_residues;  // "chain:NAMEnumber[icode]", nearest atoms of the samples, sorted
 };
 
-/// What the handle repair of a molecular surface changed (all zero when nothing was needed).
-struct TopologyRepair {
+/// What the handle repair of a molecular surface changed (all zero when nothing was needed): an
+/// OuterGenusRepair in Å, for the report.
+struct HandleRepairReport {
   int genus_before = 0;           // of the outer surface before repair (also with --keep-topology)
-  /// "none"; "per-handle" (each handle cut or each tunnel filled, whichever is smaller); or, when that
-  /// does not reach genus 0, the global fallback "fill" (every tunnel filled) or "cut" (every handle cut).
-  std::string method = "none";
+  /// kNone; kPerHandle (each handle cut or each tunnel filled, whichever is smaller); or, when that does
+  /// not reach genus 0, the global closure kGlobalFill (every tunnel filled) or kGlobalCut (every handle cut).
+  RepairMethod method = RepairMethod::kNone;
   /// Rounds of the per-handle repair, each a pair of growths over the whole grid (another one when a
   /// round left handles: a change that split off a piece larger than the repair's search counts like a
   /// handle removed, and the clusters not chosen may not stand in for a change skipped); 0 for "none"
@@ -43,7 +45,7 @@ struct TopologyRepair {
   std::int64_t samples_changed = 0;
   double volume_changed = 0;      // Å³ (samples changed x grid³)
   double area_before = 0, area_after = 0;  // Å², of the outer surface (the largest component)
-  std::vector<HandleChangeReport> changes;  // per handle ("per-handle"), or one entry for a global fallback
+  std::vector<ClosureReport> closures;  // per handle (kPerHandle), or one for the global closure
 };
 
 /// What a closed component of a molecular surface is.
@@ -95,6 +97,6 @@ Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions
 /// Preconditions: atoms non-empty with positive radii (as read_structure gives them).
 /// Throws InputError as solvent_excluded_field does (e.g. a grid too large for the memory budget).
 MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                                  TopologyRepair* repair, bool full_provenance = true);
+                                  HandleRepairReport* repair, bool full_provenance = true);
 
 }  // namespace spheremap

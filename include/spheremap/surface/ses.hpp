@@ -66,7 +66,7 @@ Grid3<float> solvent_excluded_field_float(const std::vector<Atom>& atoms, const 
 /// Preconditions and throws as solvent_excluded_field.
 Mesh solvent_excluded_surface(const std::vector<Atom>& atoms, const SurfaceOptions& options);
 
-/// The contour g = 0 of a field from solvent_excluded_field (possibly repaired by cut_handles), with the
+/// The contour g = 0 of a field from solvent_excluded_field (possibly repaired: repair/handle_repair.hpp), with the
 /// same provenance attributes as solvent_excluded_surface.
 /// Preconditions: `field` was built from `atoms` (every sample of its outer layer outside).
 /// Throws std::invalid_argument as contour_isosurface does.
