@@ -81,14 +81,10 @@ OuterGenusRepair repair_outer_genus_impl(Grid3<T>& field, double level, int genu
 
 const char* to_string(RepairMethod method) {
   switch (method) {
-    case RepairMethod::kPerHandle:
-      return "per-handle";
-    case RepairMethod::kGlobalFill:
-      return "fill";
-    case RepairMethod::kGlobalCut:
-      return "cut";
-    case RepairMethod::kNone:
-      break;
+    case RepairMethod::kPerHandle: return "per-handle";
+    case RepairMethod::kGlobalFill: return "fill";
+    case RepairMethod::kGlobalCut: return "cut";
+    case RepairMethod::kNone: break;
   }
   return "none";
 }
