@@ -287,6 +287,14 @@ std::string summary_text(const MapJobResult& result) {
                       "moves\n",
                       repair.plain_certificate.folded, repair.plain_certificate.collapsed, repair.reweighting_rounds,
                       repair.untangling_moves);
+  if (map.diagnostics.fallback.ran) {
+    const auto& e = map.diagnostics.fallback.embedding;
+    text += fmt::format(
+        "  fallback (the map above was not certified): progressive embedding, {} levels down to {} vertices, "
+        "{} re-insertions, {} optimizer iterations ({} on the whole mesh, {}), {}\n",
+        e.levels, e.base_vertices, e.insertions, e.optimizer_iterations, e.final_iterations, e.final_stop_reason,
+        e.valid ? "valid" : "NOT VALID (doubles could not hold it)");
+  }
   text += fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
                       c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage,
                       c.decided_exactly);

@@ -160,6 +160,23 @@ nlohmann::json mesh_json(const PreparedMesh& prepared) {
           {"genus", prep.genus}};
 }
 
+nlohmann::json fallback_json(const FallbackReport& fallback) {
+  const auto& e = fallback.embedding;
+  return {{"method", "progressive-embedding"},
+          {"south_vertex", fallback.south},
+          {"levels", e.levels},
+          {"base_vertices", e.base_vertices},
+          {"insertions", e.insertions},
+          {"failed_insertions", e.failed_insertions},
+          {"optimizer_iterations", e.optimizer_iterations},
+          {"final_iterations", e.final_iterations},
+          {"final_stop_reason", e.final_stop_reason},
+          {"energy", to_string(SphereEnergy::kSymmetricDirichlet)},
+          {"energy_before", e.energy_before},
+          {"energy_after", e.energy_after},
+          {"valid", e.valid}};
+}
+
 nlohmann::json map_json(const SphereMap& map) {
   const auto& construction = map.diagnostics.construction;
   const auto& solve = map.diagnostics.solve;
@@ -168,31 +185,34 @@ nlohmann::json map_json(const SphereMap& map) {
   for (const auto& s : construction.split_edges)
     splits.push_back({{"a", s.a}, {"b", s.b}, {"ring", std::string(1, s.pole)}});
   const auto& r = map.superposition.rotation;
-  return {{"method", to_string(construction.method)},
-          {"refinement_levels", construction.refinement_levels},
-          {"north_pole", map.poles.north},
-          {"south_pole", map.poles.south},
-          {"pole_graph_distance", map.poles.graph_distance},
-          {"theta0", construction.theta0},
-          {"mercator_c", construction.mercator_c},
-          {"ring_z", construction.ring_z},
-          {"north_ring_size", construction.north_ring_size},
-          {"south_ring_size", construction.south_ring_size},
-          {"split_edges", splits},
-          {"meridian_length", construction.meridian.size()},
-          {"meridian_method", to_string(construction.meridian_method)},
-          {"meridian_round", construction.meridian_round},
-          {"solver", to_string(solve.solver)},
-          {"elimination_order", to_string(solve.elimination_order)},
-          {"gauss_seidel_sweeps", solve.gauss_seidel_sweeps},
-          {"gauss_seidel_converged", solve.gauss_seidel_converged},
-          {"weight_fallback_rows", solve.weight_fallback_rows},
-          {"reweighting_rounds", repair.reweighting_rounds},
-          {"equalizing_rounds", repair.equalizing_rounds},
-          {"untangling_moves", repair.untangling_moves},
-          {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
-          {"superposition_rmsd", map.superposition.rmsd},
-          {"superposition_scale", map.superposition.scale}};
+  nlohmann::json json = {{"method", to_string(construction.method)},
+                        {"refinement_levels", construction.refinement_levels},
+                        {"north_pole", map.poles.north},
+                        {"south_pole", map.poles.south},
+                        {"pole_graph_distance", map.poles.graph_distance},
+                        {"theta0", construction.theta0},
+                        {"mercator_c", construction.mercator_c},
+                        {"ring_z", construction.ring_z},
+                        {"north_ring_size", construction.north_ring_size},
+                        {"south_ring_size", construction.south_ring_size},
+                        {"split_edges", splits},
+                        {"meridian_length", construction.meridian.size()},
+                        {"meridian_method", to_string(construction.meridian_method)},
+                        {"meridian_round", construction.meridian_round},
+                        {"solver", to_string(solve.solver)},
+                        {"elimination_order", to_string(solve.elimination_order)},
+                        {"gauss_seidel_sweeps", solve.gauss_seidel_sweeps},
+                        {"gauss_seidel_converged", solve.gauss_seidel_converged},
+                        {"weight_fallback_rows", solve.weight_fallback_rows},
+                        {"reweighting_rounds", repair.reweighting_rounds},
+                        {"equalizing_rounds", repair.equalizing_rounds},
+                        {"untangling_moves", repair.untangling_moves},
+                        {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
+                        {"superposition_rmsd", map.superposition.rmsd},
+                        {"superposition_scale", map.superposition.scale}};
+  // Only maps that needed the fallback carry its report: every other report stays as it was.
+  if (map.diagnostics.fallback.ran) json["fallback"] = fallback_json(map.diagnostics.fallback);
+  return json;
 }
 
 nlohmann::json distortion_json(const DistortionMetrics& m) {

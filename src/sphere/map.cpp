@@ -16,6 +16,7 @@
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/superposition.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/sphere/fallback.hpp"
 #include "spheremap/sphere/poles.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "spheremap/topology/subdivide.hpp"
@@ -33,7 +34,12 @@ const char* to_string(Weights weights) {
 }
 const char* to_string(Solver solver) { return solver == Solver::kDirect ? "direct" : "gauss-seidel"; }
 const char* to_string(MapMethod method) {
-  return method == MapMethod::kPolesAndRings ? "poles-and-rings" : "refined-poles-and-rings";
+  switch (method) {
+    case MapMethod::kPolesAndRings: return "poles-and-rings";
+    case MapMethod::kRefinedPolesAndRings: return "refined-poles-and-rings";
+    case MapMethod::kFallbackProgressive: return "fallback-progressive";
+  }
+  return "?";
 }
 const char* to_string(MeridianMethod method) {
   switch (method) {
@@ -128,6 +134,7 @@ std::vector<Vec3> map_refined(const Mesh& mesh, const VertexRings& rings, const 
   } while (inner_distance < 4);
   MapOptions inner = options;
   inner.poles = std::make_pair(north, inner_south);
+  inner.fallback = false;  // the fallback, if needed, maps the input itself (map_to_sphere)
   const SphereMap refined_map = map_to_sphere(refined, inner);
   // Back to the inner map's pole-aligned frame: θ, φ and the superposition are taken from there.
   const auto undo = transposed(refined_map.superposition.rotation);
@@ -209,6 +216,24 @@ void set_angles(SphereMap& result, const std::vector<Vec3>& sphere) {
   }
 }
 
+// The fallback (sphere/fallback.hpp) for a map the repair left uncertified, with the same poles: its map
+// replaces `finished` if it is certified or has fewer bad triangles. Laps "fallback".
+void run_fallback(const Mesh& mesh, detail::InputStars& input, const MapOptions& options, SphereMap& result,
+                  detail::Finished& finished, detail::StageTimer& timer) {
+  auto& diagnostics = result.diagnostics;
+  auto sphere = fallback_map(mesh, result.poles.north, result.poles.south, diagnostics.fallback);
+  if (diagnostics.fallback.embedding.valid) {
+    auto candidate = detail::finish_map(mesh, input, std::move(sphere), options);
+    const auto& before = finished.certificate;
+    const auto& after = candidate.certificate;
+    if (after.certified() || after.folded + after.collapsed < before.folded + before.collapsed) {
+      finished = std::move(candidate);
+      diagnostics.construction.method = MapMethod::kFallbackProgressive;
+    }
+  }
+  timer.lap("fallback");
+}
+
 }  // namespace
 
 SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
@@ -253,6 +278,8 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     timer.lap("reweight");
   }
   if (!finished) finished = detail::finish_map(mesh, input, std::move(plain.sphere), options, &timer);
+  if (options.repair && options.fallback && !finished->certificate.certified() && n >= 5)
+    run_fallback(mesh, input, options, result, *finished, timer);
   result.superposition = finished->superposition;
   repair.untangling_moves = finished->untangling_moves;
   result.certificate = std::move(finished->certificate);

@@ -10,6 +10,7 @@
 #include "spheremap/geometry/superposition.hpp"
 #include "spheremap/mesh.hpp"
 #include "spheremap/sphere/certify.hpp"
+#include "spheremap/sphere/fallback.hpp"
 #include "spheremap/timing.hpp"
 
 namespace spheremap {
@@ -44,6 +45,9 @@ struct MapOptions {
   /// (0: none; the map is then the first certified one, with limbs small on the sphere).
   int max_equalizing_rounds = 12;
   int max_untangling_sweeps = 200;
+  /// With repair: when the map is still not certified, build one by progressive embedding and
+  /// optimization on the sphere (sphere/fallback.hpp), with the same poles.
+  bool fallback = true;
 };
 
 struct SplitEdge {
@@ -55,6 +59,9 @@ struct SplitEdge {
 enum class MapMethod {
   kPolesAndRings,         // "poles-and-rings": the paper's
   kRefinedPolesAndRings,  // "refined-poles-and-rings": a midpoint subdivision mapped (poles < 4 edges apart)
+  /// "fallback-progressive": neither ended certified and the fallback's map (MapDiagnostics::fallback)
+  /// replaced theirs; the rest of MapConstruction still describes the construction it replaced.
+  kFallbackProgressive,
 };
 
 /// How the boundary meridian was found (report.json: map.meridian_method).
@@ -129,7 +136,8 @@ struct MapDiagnostics {
   MapConstruction construction;
   SolveDiagnostics solve;
   RepairDiagnostics repair;
-  std::vector<StageTime> timings;  // "poles", "rings" or "solve", "certify-plain", "reweight", ...
+  FallbackReport fallback;         // ran only when the map ended uncertified after the repair
+  std::vector<StageTime> timings;  // "poles", "rings" or "solve", "certify-plain", "reweight", ..., "fallback"
 };
 
 /// The map and its certificate, then how it was made.

@@ -1,0 +1,58 @@
+// Optimization of a sphere map's vertex positions that never leaves the set of valid maps (every
+// triangle positively oriented by the exact predicate): projected Newton in each vertex's tangent plane,
+// sparse solves with CHOLMOD, a barrier in the energy, an exact orientation check in the line search,
+// and a retraction back onto the unit sphere (stage: sphere).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "spheremap/mesh.hpp"
+
+namespace spheremap {
+
+/// What the optimization minimizes, summed over triangles. Each is infinite on a triangle that is not
+/// positively oriented, so a descent from a valid map stays valid.
+enum class SphereEnergy {
+  /// Symmetric Dirichlet of the affine map from each surface triangle (scaled so the surface's area is
+  /// the map's) to its chord triangle on the sphere, with ½·det[a, b, c] as the image area: area and
+  /// angles together, +inf as a triangle collapses or folds.
+  kSymmetricDirichlet,
+};
+
+struct SphereOptimizeOptions {
+  SphereEnergy energy = SphereEnergy::kSymmetricDirichlet;
+  int max_iterations = 100;
+  /// Stop when an iteration lowers the energy by less than this fraction of it.
+  double relative_tolerance = 1e-6;
+  /// Surface triangles smaller than this fraction of the mean triangle area count as this large: tiny
+  /// input triangles (stacked triangulations reach 1e-15 of the total) are then not asked to become
+  /// tiny on the sphere, where doubles could not represent them; they stay above their share.
+  double min_rest_area_fraction = 1e-3;
+  /// Surface triangles with an angle below this (radians) count as equilateral of their area: a needle
+  /// would make the energy as stiff as its cotangent.
+  double min_rest_angle = 1e-3;
+};
+
+struct SphereOptimizeReport {
+  int iterations = 0;          // accepted Newton steps
+  double energy_before = 0;    // of the start, per unit of the map's area
+  double energy_after = 0;
+  std::string stop_reason;     // "converged", "iterations", "line-search" or "factorization"
+};
+
+/// Minimizes `energy` over the positions `sphere` of the vertices not marked in `fixed`, keeping every
+/// triangle of `triangles` positively oriented (exact orientation_sign > 0) and every point a unit
+/// vector. `rest` holds the surface positions the energy compares with (one per vertex).
+/// Preconditions: rest.size() == sphere.size() == fixed.size(); indices valid; every point of `sphere`
+/// a unit vector, every triangle positively oriented on it (a valid map); the map's triangles are a
+/// closed triangulation of the sphere (for the rest scaling). Throws std::invalid_argument if the sizes
+/// disagree or the start is not valid. Deterministic.
+SphereOptimizeReport optimize_on_sphere(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles,
+                                        std::vector<Vec3>& sphere, const std::vector<char>& fixed,
+                                        const SphereOptimizeOptions& options = {});
+
+const char* to_string(SphereEnergy energy);
+
+}  // namespace spheremap

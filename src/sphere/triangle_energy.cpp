@@ -1,0 +1,83 @@
+#include "triangle_energy.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "spheremap/geometry/vec.hpp"
+
+namespace spheremap::detail {
+namespace {
+
+// M(v)_ij = ε_ijk v_k: the block ∂²(a·(b×c))/∂a∂b is M(c).
+Eigen::Matrix3d epsilon_contract(const Vec3& v) {
+  Eigen::Matrix3d m;
+  m << 0, v[2], -v[1], -v[2], 0, v[0], v[1], -v[0], 0;
+  return m;
+}
+
+Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
+
+}  // namespace
+
+RestTriangle rest_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double area, double min_angle) {
+  const Vec3* corner[3] = {&a, &b, &c};
+  RestTriangle rest{{0, 0, 0}, area};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 u = *corner[(k + 1) % 3] - *corner[k];
+    const Vec3 v = *corner[(k + 2) % 3] - *corner[k];
+    const double sine = norm(cross(u, v)), cosine = dot(u, v);
+    if (!(sine > 0) || std::atan2(sine, cosine) < min_angle) {
+      for (double& x : rest.cot) x = 1 / std::sqrt(3.0);
+      return rest;
+    }
+    rest.cot[k] = cosine / sine;
+  }
+  return rest;
+}
+
+double half_det(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * dot(a, cross(b - a, c - a)); }
+
+double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double s = half_det(a, b, c);
+  if (!(s > 0)) return std::numeric_limits<double>::infinity();
+  const double n = 0.5 * (rest.cot[0] * squared_distance(b, c) + rest.cot[1] * squared_distance(c, a) +
+                          rest.cot[2] * squared_distance(a, b));
+  return n * (1 + (rest.area / s) * (rest.area / s));
+}
+
+double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
+                           Matrix9& hessian) {
+  const double s = half_det(a, b, c);
+  const double c0 = rest.cot[0], c1 = rest.cot[1], c2 = rest.cot[2];
+  const double n = 0.5 * (c0 * squared_distance(b, c) + c1 * squared_distance(c, a) + c2 * squared_distance(a, b));
+  // ∇N and the cotangent stiffness K (∇²N = K ⊗ I3).
+  Vector9 grad_n;
+  grad_n << eigen(c1 * (a - c) + c2 * (a - b)), eigen(c0 * (b - c) + c2 * (b - a)), eigen(c0 * (c - b) + c1 * (c - a));
+  Eigen::Matrix3d k;
+  k << c1 + c2, -c2, -c1, -c2, c0 + c2, -c0, -c1, -c0, c0 + c1;
+  // ∇S: ½ b×c etc., each written as a short cross product plus one tangent to its corner, so that the
+  // tangential part (all the optimization sees) keeps its precision on tiny triangles.
+  Vector9 grad_s;
+  grad_s << eigen(0.5 * (cross(b - a, c - a) + cross(a, c - b))), eigen(0.5 * (cross(c - b, a - b) + cross(b, a - c))),
+      eigen(0.5 * (cross(a - c, b - c) + cross(c, b - a)));
+  Matrix9 hess_s = Matrix9::Zero();
+  hess_s.block<3, 3>(0, 3) = 0.5 * epsilon_contract(c);
+  hess_s.block<3, 3>(0, 6) = -0.5 * epsilon_contract(b);
+  hess_s.block<3, 3>(3, 6) = 0.5 * epsilon_contract(a);
+  hess_s.block<3, 3>(3, 0) = hess_s.block<3, 3>(0, 3).transpose();
+  hess_s.block<3, 3>(6, 0) = hess_s.block<3, 3>(0, 6).transpose();
+  hess_s.block<3, 3>(6, 3) = hess_s.block<3, 3>(3, 6).transpose();
+
+  // E = N (1 + Q), Q = A²/S².
+  const double a2 = rest.area * rest.area;
+  const double q = a2 / (s * s);
+  const Vector9 grad_q = (-2 * a2 / (s * s * s)) * grad_s;
+  gradient = (1 + q) * grad_n + n * grad_q;
+  hessian = n * ((6 * a2 / (s * s * s * s)) * grad_s * grad_s.transpose() - (2 * a2 / (s * s * s)) * hess_s) +
+            grad_n * grad_q.transpose() + grad_q * grad_n.transpose();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) hessian.block<3, 3>(3 * i, 3 * j).diagonal().array() += (1 + q) * k(i, j);
+  return n * (1 + q);
+}
+
+}  // namespace spheremap::detail

@@ -1,0 +1,37 @@
+// Private to the sphere stage: per-triangle energies of a sphere map and their derivatives in R^9 (the
+// three corners' coordinates), for optimize_on_sphere.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "spheremap/mesh.hpp"
+
+namespace spheremap::detail {
+
+/// What an energy compares a map's triangle with: the surface triangle's cotangents (corner k's, for the
+/// edge opposite it) and its target area on the sphere.
+struct RestTriangle {
+  double cot[3];
+  double area;
+};
+
+/// The rest data of the surface triangle abc with target area `area`. A triangle with an angle below
+/// `min_angle` (or no area) counts as equilateral.
+RestTriangle rest_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double area, double min_angle);
+
+/// ½·det[a, b, c] (the chord triangle's area times its plane's distance from the centre, which is the
+/// area for small triangles), from edge vectors so that it keeps its relative precision when tiny.
+double half_det(const Vec3& a, const Vec3& b, const Vec3& c);
+
+using Vector9 = Eigen::Matrix<double, 9, 1>;
+using Matrix9 = Eigen::Matrix<double, 9, 9>;
+
+/// Symmetric Dirichlet N·(1 + A²/S²) with N = ½ Σ cot_k |e_k|² (chord edges e_k opposite corner k,
+/// the Dirichlet energy of the affine map), A the target area and S = half_det(a, b, c); +inf if S <= 0.
+double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// The same, with its gradient and Hessian with respect to (a, b, c). Precondition: S > 0.
+double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
+                           Matrix9& hessian);
+
+}  // namespace spheremap::detail
