@@ -9,7 +9,6 @@
 
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/shapes/shapes.hpp"
-#include "spheremap/topology/subdivide.hpp"
 
 namespace spheremap {
 namespace {
@@ -130,16 +129,33 @@ Mesh make_bent_tube(TubeBend bend, int segments, int rings, double radius) {
   return mesh;
 }
 
-Mesh make_spiky_sphere(int level, int spikes, double length, int subdivisions, std::uint32_t seed) {
+Mesh make_spiky_sphere(int level, int spikes, double length, int rings, std::uint32_t seed) {
   if (level < 0 || level > 6) throw std::invalid_argument("make_spiky_sphere: level must be in [0, 6]");
   if (spikes < 0) throw std::invalid_argument("make_spiky_sphere: spikes must be >= 0");
-  if (!(std::isfinite(length) && length >= 0)) throw std::invalid_argument("make_spiky_sphere: length must be finite and >= 0");
-  if (subdivisions < 0 || subdivisions > 6) throw std::invalid_argument("make_spiky_sphere: subdivisions must be in [0, 6]");
+  if (!(std::isfinite(length) && length > 0)) throw std::invalid_argument("make_spiky_sphere: length must be finite and > 0");
+  if (rings < 1 || rings > 10000) throw std::invalid_argument("make_spiky_sphere: rings must be in [1, 10000]");
   Mesh mesh = make_icosphere(level);
   const auto n = mesh.positions.size();
-  std::vector<std::vector<std::int32_t>> neighbours(n);
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]);
+  // Each vertex's triangles, and its neighbours counter-clockwise (from the triangles' orientation).
+  std::vector<std::vector<std::size_t>> star(n);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (const auto v : mesh.triangles[t]) star[v].push_back(t);
+  auto link = [&](std::int32_t v) {
+    std::vector<std::pair<std::int32_t, std::int32_t>> step;
+    for (const auto t : star[v]) {
+      const auto& tri = mesh.triangles[t];
+      const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+      step.emplace_back(tri[(k + 1) % 3], tri[(k + 2) % 3]);
+    }
+    std::vector<std::int32_t> ring{step.front().first};
+    while (ring.size() < step.size())
+      for (const auto& [from, to] : step)
+        if (from == ring.back()) {
+          ring.push_back(to);
+          break;
+        }
+    return ring;
+  };
   std::mt19937 generator(seed);
   std::vector<char> blocked(n, 0);
   for (int spike = 0; spike < spikes; ++spike) {
@@ -148,11 +164,35 @@ Mesh make_spiky_sphere(int level, int spikes, double length, int subdivisions, s
       if (!blocked[v]) free.push_back(static_cast<std::int32_t>(v));
     if (free.empty()) break;
     const auto v = free[index_draw(generator, free.size())];
-    mesh.positions[v] = (1 + length) * mesh.positions[v];
+    const auto base = link(v);
+    // Spikes two edges apart at least, so that no two tubes start from one vertex.
     blocked[v] = 1;
-    for (const auto w : neighbours[v]) blocked[w] = 1;
+    for (const auto w : base) {
+      blocked[w] = 1;
+      for (const auto x : link(w)) blocked[x] = 1;
+    }
+    // The star of v becomes a tube of `rings` rings, a third as wide as the star, closed by v as its tip.
+    const Vec3 apex = mesh.positions[v];
+    const auto k = base.size();
+    std::vector<std::int32_t> previous = base;
+    for (int j = 1; j <= rings; ++j) {
+      std::vector<std::int32_t> ring;
+      const Vec3 centre = (1 + length * j / (rings + 1)) * apex;
+      for (const auto w : base) {
+        ring.push_back(static_cast<std::int32_t>(mesh.positions.size()));
+        mesh.positions.push_back(centre + (1.0 / 3) * (mesh.positions[w] - apex));
+      }
+      for (std::size_t i = 0; i < k; ++i) {
+        const auto a0 = previous[i], a1 = previous[(i + 1) % k], b0 = ring[i], b1 = ring[(i + 1) % k];
+        mesh.triangles.push_back({a0, a1, b1});
+        mesh.triangles.push_back({a0, b1, b0});
+      }
+      previous = ring;
+    }
+    mesh.positions[v] = (1 + length) * apex;
+    for (std::size_t i = 0; i < k; ++i) mesh.triangles[star[v][i]] = {v, previous[i], previous[(i + 1) % k]};
   }
-  return subdivide_midpoint(mesh, subdivisions);
+  return mesh;
 }
 
 }  // namespace spheremap

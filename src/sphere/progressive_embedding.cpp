@@ -19,6 +19,8 @@ namespace {
 
 // Removing a vertex of high degree leaves a wide fan of thin triangles: they are left for later levels.
 constexpr std::int32_t kMaxRemovedDegree = 8;
+// A rest angle no triangle exceeds in all three corners: every rest triangle counts as equilateral.
+constexpr double kEquilateral = 1.1;
 
 // A removed vertex and the polygon its star leaves (its neighbours, counter-clockwise seen from outside).
 struct Removal {
@@ -278,6 +280,39 @@ bool star_is_valid(const std::vector<Vec3>& sphere, const Removal& removal) {
   return true;
 }
 
+// Puts each removed vertex of one level inside the kernel of its link polygon (the polygons of one
+// level do not overlap and their corners do not move, so the order does not matter). Returns how many
+// could not be put where every triangle of their star is positively oriented.
+std::int64_t insert_level(const std::vector<Removal>& level, std::vector<Vec3>& sphere) {
+  std::int64_t failed = 0;
+  std::vector<Vec3> polygon;
+  for (const auto& removal : level) {
+    polygon.clear();
+    for (const auto w : removal.link) polygon.push_back(sphere[w]);
+    Vec3 point{};
+    if (kernel_point(polygon, point)) sphere[removal.vertex] = point;
+    if (!star_is_valid(sphere, removal)) ++failed;
+  }
+  return failed;
+}
+
+// The base of the hierarchy on the sphere (convex_embedding, with its own indices); false if a triangle
+// came out not positively oriented.
+bool embed_base(std::int32_t vertex_count, const std::vector<Triangle>& base, std::int32_t north, std::int32_t south,
+                std::vector<Vec3>& sphere, std::int32_t& base_vertices) {
+  const auto index = local_index(vertex_count, base);
+  base_vertices = static_cast<std::int32_t>(index.vertices.size());
+  std::vector<Triangle> local(base.size());
+  for (std::size_t t = 0; t < base.size(); ++t)
+    for (int k = 0; k < 3; ++k) local[t][k] = index.local[base[t][k]];
+  const auto base_sphere = convex_embedding(base_vertices, local, index.local[north], index.local[south]);
+  sphere.assign(vertex_count, Vec3{0, 0, 0});
+  for (std::size_t i = 0; i < index.vertices.size(); ++i) sphere[index.vertices[i]] = base_sphere[i];
+  for (const auto& tri : base)
+    if (orientation_sign(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]) <= 0) return false;
+  return true;
+}
+
 }  // namespace
 
 ProgressiveEmbeddingReport progressive_embedding(const Mesh& mesh, std::int32_t north, std::int32_t south,
@@ -289,56 +324,44 @@ ProgressiveEmbeddingReport progressive_embedding(const Mesh& mesh, std::int32_t 
   ProgressiveEmbeddingReport report;
   const Hierarchy hierarchy = build_hierarchy(mesh, north, south);
   report.levels = static_cast<int>(hierarchy.levels.size());
+  if (!embed_base(n, hierarchy.meshes.back(), north, south, sphere, report.base_vertices)) return report;
 
-  // The base, embedded convexly with its own indices.
-  const auto& base = hierarchy.meshes.back();
-  const auto index = local_index(n, base);
-  report.base_vertices = static_cast<std::int32_t>(index.vertices.size());
-  std::vector<Triangle> local(base.size());
-  for (std::size_t t = 0; t < base.size(); ++t)
-    for (int k = 0; k < 3; ++k) local[t][k] = index.local[base[t][k]];
-  const auto base_sphere = convex_embedding(report.base_vertices, local, index.local[north], index.local[south]);
-  sphere.assign(n, Vec3{0, 0, 0});
-  for (std::size_t i = 0; i < index.vertices.size(); ++i) sphere[index.vertices[i]] = base_sphere[i];
-  for (const auto& tri : base)
-    if (orientation_sign(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]) <= 0) return report;
-
-  // Levels back from the coarsest: insert, then optimize (the input's level longest).
-  for (auto level = static_cast<std::int64_t>(hierarchy.levels.size()); level >= 0; --level) {
-    const bool finest = level == 0;
-    if (level < static_cast<std::int64_t>(hierarchy.levels.size())) {
-      for (const auto& removal : hierarchy.levels[level]) {
-        std::vector<Vec3> polygon;
-        for (const auto w : removal.link) polygon.push_back(sphere[w]);
-        Vec3 point{};
-        ++report.insertions;
-        if (!kernel_point(polygon, point)) {
-          ++report.failed_insertions;
-          continue;
-        }
-        sphere[removal.vertex] = point;
-        if (!star_is_valid(sphere, removal)) ++report.failed_insertions;
-      }
+  // Coarse levels aim at equilateral triangles of the surface's areas: what matters there is wide
+  // kernels for the next insertions (thin fans would shrink every level's new triangles further).
+  SphereOptimizeOptions coarse = options.optimize;
+  coarse.relative_tolerance = options.level_tolerance;
+  coarse.min_rest_angle = kEquilateral;
+  report.optimizer_iterations +=
+      optimize_level(mesh, hierarchy.meshes.back(), north, south, sphere, coarse, options.level_iterations).iterations;
+  // Levels back from the coarsest: insert, then optimize. A level whose insertions fail (kernels too
+  // thin for doubles) is tried once more after optimizing the level below it to convergence.
+  for (auto level = static_cast<std::int64_t>(hierarchy.levels.size()) - 1; level >= 0; --level) {
+    const auto& removals = hierarchy.levels[level];
+    report.insertions += static_cast<std::int64_t>(removals.size());
+    if (insert_level(removals, sphere) > 0) {
+      SphereOptimizeOptions thorough = coarse;
+      thorough.relative_tolerance = options.final_tolerance;
+      report.optimizer_iterations +=
+          optimize_level(mesh, hierarchy.meshes[level + 1], north, south, sphere, thorough, options.final_iterations).iterations;
+      report.failed_insertions = insert_level(removals, sphere);
       if (report.failed_insertions > 0) return report;
     }
-    const auto& triangles = hierarchy.meshes[level];
-    const int iterations = finest ? options.final_iterations : options.level_iterations;
-    if (finest) {
-      report.energy_before = 0;
-    }
-    const auto result = optimize_level(mesh, triangles, north, south, sphere, options.optimize, iterations);
-    report.optimizer_iterations += result.iterations;
-    if (finest) {
-      report.final_iterations = result.iterations;
-      report.energy_before = result.energy_before;
-      report.energy_after = result.energy_after;
-      report.final_stop_reason = result.stop_reason;
-    }
+    if (level > 0)
+      report.optimizer_iterations +=
+          optimize_level(mesh, hierarchy.meshes[level], north, south, sphere, coarse, options.level_iterations).iterations;
   }
-  report.valid = true;
+  // The input's own triangles, with their own shapes.
+  SphereOptimizeOptions fine = options.optimize;
+  fine.relative_tolerance = options.final_tolerance;
+  const auto result = optimize_level(mesh, mesh.triangles, north, south, sphere, fine, options.final_iterations);
+  report.optimizer_iterations += result.iterations;
+  report.final_iterations = result.iterations;
+  report.energy_before = result.energy_before;
+  report.energy_after = result.energy_after;
+  report.final_stop_reason = result.stop_reason;
+  report.valid = sphere[north] == Vec3{0, 0, 1} && sphere[south] == Vec3{0, 0, -1};
   for (const auto& tri : mesh.triangles)
     if (orientation_sign(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]) <= 0) report.valid = false;
-  report.valid = report.valid && sphere[north] == Vec3{0, 0, 1} && sphere[south] == Vec3{0, 0, -1};
   return report;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -128,18 +129,17 @@ class Optimizer {
   }
 
  private:
-  // Target areas: the surface's triangle areas (tiny ones raised to min_rest_area_fraction of the
-  // mean), scaled so that they add up to the start's total ½·det, which the map can reach.
+  // Target areas: each triangle's share of the surface's area (tiny ones raised to
+  // min_rest_area_fraction of the mean) as a solid angle, expressed as the ½·det of an equilateral
+  // spherical triangle of that solid angle (½·det is the solid angle for small triangles, less for large).
   void build_rest(const std::vector<Vec3>& rest) {
     const auto count = triangles_.size();
     std::vector<double> area(count);
     double surface_total = 0;
-    total_area_ = 0;
     for (std::size_t t = 0; t < count; ++t) {
       const auto& tri = triangles_[t];
       area[t] = triangle_area(rest[tri[0]], rest[tri[1]], rest[tri[2]]);
       surface_total += area[t];
-      total_area_ += detail::half_det(sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]]);
     }
     const double mean = surface_total / static_cast<double>(std::max<std::size_t>(count, 1));
     const double floor = options_.min_rest_area_fraction * mean;
@@ -150,10 +150,12 @@ class Optimizer {
       clamped_total = static_cast<double>(count);
     }
     rest_.resize(count);
+    total_area_ = 0;
     for (std::size_t t = 0; t < count; ++t) {
       const auto& tri = triangles_[t];
-      rest_[t] = detail::rest_triangle(rest[tri[0]], rest[tri[1]], rest[tri[2]], area[t] / clamped_total * total_area_,
-                                       options_.min_rest_angle);
+      const double target = detail::equilateral_half_det(4 * std::numbers::pi * area[t] / clamped_total);
+      rest_[t] = detail::rest_triangle(rest[tri[0]], rest[tri[1]], rest[tri[2]], target, options_.min_rest_angle);
+      total_area_ += target;
     }
   }
 

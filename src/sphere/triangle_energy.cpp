@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "spheremap/geometry/vec.hpp"
 
@@ -33,6 +34,24 @@ RestTriangle rest_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double a
     rest.cot[k] = cosine / sine;
   }
   return rest;
+}
+
+double equilateral_half_det(double solid_angle) {
+  // Corners at angular distance ρ from the centre, 120° apart: det = (3√3/2) sin²ρ cos ρ and
+  // 1 + a·b + b·c + c·a = 4 - (9/2) sin²ρ; tan(Ω/2) = det / that (van Oosterom & Strackee) grows
+  // with ρ from 0 to a great circle (Ω = 2π at ρ = π/2), so bisection on ρ finds it.
+  const double root27 = 3 * std::sqrt(3.0);
+  auto omega = [&](double rho) {
+    const double s2 = std::sin(rho) * std::sin(rho);
+    return 2 * std::atan2(0.5 * root27 * s2 * std::cos(rho), 4 - 4.5 * s2);
+  };
+  double low = 0, high = 0.5 * std::numbers::pi;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double middle = 0.5 * (low + high);
+    (omega(middle) < solid_angle ? low : high) = middle;
+  }
+  const double rho = 0.5 * (low + high);
+  return 0.25 * root27 * std::sin(rho) * std::sin(rho) * std::cos(rho);
 }
 
 double half_det(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * dot(a, cross(b - a, c - a)); }

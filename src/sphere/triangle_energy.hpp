@@ -23,6 +23,10 @@ RestTriangle rest_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double a
 /// area for small triangles), from edge vectors so that it keeps its relative precision when tiny.
 double half_det(const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// ½·det[a, b, c] of the equilateral spherical triangle of solid angle `solid_angle` (in (0, 2π)): the
+/// area target of a triangle with that share of the sphere.
+double equilateral_half_det(double solid_angle);
+
 using Vector9 = Eigen::Matrix<double, 9, 1>;
 using Matrix9 = Eigen::Matrix<double, 9, 9>;
 

@@ -147,6 +147,35 @@ TEST_F(Cli, UncertifiedMapExitsThreeButIsWrittenWithItsBadTriangles) {
   EXPECT_EQ(repaired.exit_code, 0) << repaired.output;
 }
 
+TEST_F(Cli, GeneratedHardCaseIsCertifiedByTheFallbackAndSaysSo) {
+  // A coarse U-shaped tube (3 vertices per ring): the plain map and its repair end uncertified.
+  const auto tube = (folder_ / "tube.ply").string();
+  const auto generated = run_cli("generate tube-u --segments 3 --rings 40 -o " + tube);
+  ASSERT_EQ(generated.exit_code, 0) << generated.output;
+  const auto mapped = run_cli("map " + tube + " -o " + (folder_ / "tube").string());
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.output;
+  EXPECT_NE(mapped.output.find("fallback (the map above was not certified): progressive embedding"), std::string::npos)
+      << mapped.output;
+  const auto report = nlohmann::json::parse(slurp(folder_ / "tube" / "report.json"));
+  EXPECT_EQ(report["map"]["method"], "fallback-progressive");
+  EXPECT_TRUE(report["certificate"]["certified"].get<bool>());
+  EXPECT_FALSE(report["plain_algorithm_certificate"]["certified"].get<bool>());
+  EXPECT_TRUE(report["map"]["fallback"]["valid"].get<bool>());
+  EXPECT_GT(report["map"]["fallback"]["levels"].get<int>(), 0);
+  EXPECT_TRUE(report["timings_seconds"].contains("fallback"));
+  // A map certified without it carries no fallback entry at all.
+  const auto stacked = (folder_ / "ico.ply").string();
+  ASSERT_EQ(run_cli("generate icosphere --level 2 -o " + stacked).exit_code, 0);
+  ASSERT_EQ(run_cli("map " + stacked + " -o " + (folder_ / "ico").string()).exit_code, 0);
+  const auto plain = nlohmann::json::parse(slurp(folder_ / "ico" / "report.json"));
+  EXPECT_FALSE(plain["map"].contains("fallback"));
+  EXPECT_FALSE(plain["timings_seconds"].contains("fallback"));
+  // The other generated hard cases.
+  for (const char* shape : {"stacked --vertices 200 --nesting 0.5", "tube-c --segments 4 --rings 20", "spiky --level 1 --spikes 4 --spike-rings 8"})
+    EXPECT_EQ(run_cli(std::string("generate ") + shape + " -q -o " + (folder_ / "shape.ply").string()).exit_code, 0) << shape;
+  EXPECT_EQ(run_cli("generate stacked --vertices 3 -o " + (folder_ / "bad.ply").string()).exit_code, 1);
+}
+
 TEST_F(Cli, EqualizingRoundsOptionReachesTheMapAndTheReport) {
   const auto input = write_obj(folder_ / "ico.obj", make_icosphere(2));
   const auto none = run_cli("map " + input + " -o " + (folder_ / "none").string() + " --equalizing-rounds 0");

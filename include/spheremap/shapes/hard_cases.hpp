@@ -31,11 +31,12 @@ enum class TubeBend {
 /// Throws std::invalid_argument otherwise.
 Mesh make_bent_tube(TubeBend bend, int segments, int rings, double radius = 0.25);
 
-/// An icosphere of `level` whose `spikes` randomly chosen vertices (at most one per 1-ring) are pushed
-/// out to distance 1 + `length` from the centre, then midpoint-subdivided `subdivisions` times, so that
-/// each spike is a thin cone of several rings.
-/// Preconditions: level in [0, 6], spikes >= 0, length finite and >= 0, subdivisions in [0, 6].
+/// A sea urchin: an icosphere of `level` from which `spikes` randomly chosen vertices (at least three
+/// edges apart) grow thin tubes: each vertex's star becomes `rings` rings a third as wide as the star,
+/// reaching out to distance 1 + `length` from the centre, closed by the vertex itself as the tip.
+/// Harmonic maps decay exponentially along each spike.
+/// Preconditions: level in [0, 6], spikes >= 0, length finite and > 0, rings in [1, 10000].
 /// Throws std::invalid_argument otherwise.
-Mesh make_spiky_sphere(int level, int spikes, double length, int subdivisions, std::uint32_t seed);
+Mesh make_spiky_sphere(int level, int spikes, double length, int rings, std::uint32_t seed);
 
 }  // namespace spheremap

@@ -26,10 +26,14 @@ std::vector<Vec3> convex_embedding(std::int32_t vertex_count, const std::vector<
                                    std::int32_t north, std::int32_t south);
 
 struct ProgressiveEmbeddingOptions {
-  /// Newton iterations of optimize_on_sphere after each level's re-insertions, and on the finished map.
+  /// Newton iterations of optimize_on_sphere after each level's re-insertions (where only wide kernels
+  /// for the next level matter), and on the finished map; each stops earlier once an iteration lowers
+  /// the energy by less than its tolerance (a fraction of the energy).
   int level_iterations = 8;
-  int final_iterations = 200;
-  SphereOptimizeOptions optimize;  // energy, tolerances, rest clamps (max_iterations is set per level)
+  double level_tolerance = 1e-3;
+  int final_iterations = 100;
+  double final_tolerance = 1e-4;
+  SphereOptimizeOptions optimize;  // energy and rest clamps (iterations and tolerance are set above)
 };
 
 struct ProgressiveEmbeddingReport {
