@@ -26,6 +26,7 @@ constexpr double kEquilateral = 1.1;
 struct Removal {
   std::int32_t vertex;
   std::vector<std::int32_t> link;
+  std::size_t apex;  // the link corner its fan starts from (the vertex collapsed into)
 };
 
 // The levels of removals and the triangles of each level: meshes[0] is the input, meshes[L + 1] what
@@ -155,7 +156,7 @@ Hierarchy build_hierarchy(const Mesh& mesh, std::int32_t north, std::int32_t sou
       shrinking.remove(v, ring, static_cast<std::size_t>(apex));
       removed[v] = blocked[v] = 1;
       for (const auto w : ring) blocked[w] = 1;
-      level.push_back({v, std::move(ring)});
+      level.push_back({v, std::move(ring), static_cast<std::size_t>(apex)});
     }
     if (level.empty()) break;
     hierarchy.levels.push_back(std::move(level));
@@ -212,11 +213,13 @@ double kernel_point_in_chart(const std::vector<Vec3>& normal, const Vec3& centre
   return std::max(margin, 0.0);
 }
 
-// A point deep inside the spherical kernel of the polygon (unit vectors, counter-clockwise). The kernel
-// lies in the hemisphere around the sum of the edge normals, but for a thin polygon near that
-// hemisphere's rim, so the chart around the mean of the corners is tried too and the better point kept.
+// A point deep inside the spherical kernel of the polygon (unit vectors, counter-clockwise) whose fan from
+// corner `apex` is valid. The kernel lies in the hemisphere around the sum of the edge normals, but for a
+// thin polygon near that hemisphere's rim; near the apex it is never empty (the fan's triangles are
+// positively oriented), but a polygon wider than a hemisphere may have it there only. So the charts
+// around the mean of the corners, the sum of the normals and the apex are tried, the best point kept.
 // False if the kernel is empty in doubles.
-bool kernel_point(const std::vector<Vec3>& polygon, Vec3& point) {
+bool kernel_point(const std::vector<Vec3>& polygon, std::size_t apex, Vec3& point) {
   const auto k = polygon.size();
   std::vector<Vec3> normal(k);
   Vec3 normal_sum{0, 0, 0}, corner_sum{0, 0, 0};
@@ -227,10 +230,10 @@ bool kernel_point(const std::vector<Vec3>& polygon, Vec3& point) {
     corner_sum = corner_sum + polygon[i];
   }
   double best = 0;
-  for (const Vec3& sum : {corner_sum, normal_sum}) {
-    if (!(norm(sum) > 1e-9)) continue;
+  for (const Vec3& centre : {corner_sum, normal_sum, polygon[apex]}) {
+    if (!(norm(centre) > 1e-9)) continue;
     Vec3 candidate{};
-    const double margin = kernel_point_in_chart(normal, normalized(sum), candidate);
+    const double margin = kernel_point_in_chart(normal, normalized(centre), candidate);
     if (margin > best) best = margin, point = candidate;
   }
   return best > 0;
@@ -290,7 +293,7 @@ std::int64_t insert_level(const std::vector<Removal>& level, std::vector<Vec3>& 
     polygon.clear();
     for (const auto w : removal.link) polygon.push_back(sphere[w]);
     Vec3 point{};
-    if (kernel_point(polygon, point)) sphere[removal.vertex] = point;
+    if (kernel_point(polygon, removal.apex, point)) sphere[removal.vertex] = point;
     if (!star_is_valid(sphere, removal)) ++failed;
   }
   return failed;

@@ -57,7 +57,7 @@ class Optimizer {
     double total = 0;
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
       const auto& tri = triangles_[t];
-      total += detail::symmetric_dirichlet(rest_[t], points[tri[0]], points[tri[1]], points[tri[2]]);
+      total += detail::triangle_energy(options_.energy, rest_[t], points[tri[0]], points[tri[1]], points[tri[2]]);
       if (!std::isfinite(total)) return total;
     }
     return total;
@@ -171,7 +171,7 @@ class Optimizer {
     detail::Matrix9 h;
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
       const auto& tri = triangles_[t];
-      detail::symmetric_dirichlet(rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g, h);
+      detail::triangle_energy(options_.energy, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g, h);
       Eigen::Matrix<double, 9, 6> basis = Eigen::Matrix<double, 9, 6>::Zero();
       for (int k = 0; k < 3; ++k) {
         const auto v = tri[k];

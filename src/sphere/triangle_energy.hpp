@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "spheremap/mesh.hpp"
+#include "spheremap/sphere/optimize.hpp"
 
 namespace spheremap::detail {
 
@@ -37,5 +38,12 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
 /// The same, with its gradient and Hessian with respect to (a, b, c). Precondition: S > 0.
 double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
                            Matrix9& hessian);
+
+/// The energy `energy` of one triangle (a new SphereEnergy gets its two functions here): +inf when the
+/// triangle is not positively oriented; the second form also gives the gradient and Hessian in R^9
+/// (precondition: positively oriented).
+double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c);
+double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c,
+                       Vector9& gradient, Matrix9& hessian);
 
 }  // namespace spheremap::detail
