@@ -36,8 +36,10 @@ struct GenerateCommand {
     command->add_option("--neck", neck, "dumbbell: radius of the neck (0..1)");
     command->add_option("--rings", rings, "dumbbell, tube-u, tube-c: vertex rings along the axis")
         ->check(CLI::Range(2, 100000));
-    command->add_option("--segments", segments, "dumbbell, tube-u, tube-c: vertices per ring")->check(CLI::Range(3, 1000));
-    command->add_option("--vertices", vertices, "stacked: vertices (a tetrahedron with vertices inserted into triangles)")
+    command->add_option("--segments", segments, "dumbbell, tube-u, tube-c: vertices per ring")
+        ->check(CLI::Range(3, 1000));
+    command->add_option("--vertices", vertices,
+                        "stacked: vertices (a tetrahedron with vertices inserted into triangles)")
         ->check(CLI::Range(4, 10000000));
     command->add_option("--nesting", nesting, "stacked: probability of inserting into a triangle just made (depth)")
         ->check(CLI::Range(0.0, 1.0));

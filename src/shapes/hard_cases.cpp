@@ -35,7 +35,8 @@ Mesh regular_tetrahedron() {
 
 Mesh make_stacked_triangulation(int vertices, double nesting, std::uint32_t seed, double height) {
   if (vertices < 4) throw std::invalid_argument("make_stacked_triangulation: at least 4 vertices");
-  if (!(nesting >= 0 && nesting <= 1)) throw std::invalid_argument("make_stacked_triangulation: nesting must be in [0, 1]");
+  if (!(nesting >= 0 && nesting <= 1))
+    throw std::invalid_argument("make_stacked_triangulation: nesting must be in [0, 1]");
   if (!(std::isfinite(height) && height >= 0))
     throw std::invalid_argument("make_stacked_triangulation: height must be finite and >= 0");
   Mesh mesh = regular_tetrahedron();
@@ -56,8 +57,9 @@ Mesh make_stacked_triangulation(int vertices, double nesting, std::uint32_t seed
     const Vec3 normal = cross(b - a, c - a);  // outward, length twice the area
     const double area = 0.5 * norm(normal);
     if (!(area > 1e-250))
-      throw std::invalid_argument("make_stacked_triangulation: the nesting is too deep for double precision (a triangle "
-                                  "of zero area); use fewer vertices or less nesting");
+      throw std::invalid_argument(
+          "make_stacked_triangulation: the nesting is too deep for double precision (a triangle "
+          "of zero area); use fewer vertices or less nesting");
     const Vec3 inside = (w[0] / sum) * a + (w[1] / sum) * b + (w[2] / sum) * c;
     const Vec3 lifted = inside + (height * std::sqrt(area) / (2 * area)) * normal;
     const auto v = static_cast<std::int32_t>(mesh.positions.size());
@@ -132,7 +134,8 @@ Mesh make_bent_tube(TubeBend bend, int segments, int rings, double radius) {
 Mesh make_spiky_sphere(int level, int spikes, double length, int rings, std::uint32_t seed) {
   if (level < 0 || level > 6) throw std::invalid_argument("make_spiky_sphere: level must be in [0, 6]");
   if (spikes < 0) throw std::invalid_argument("make_spiky_sphere: spikes must be >= 0");
-  if (!(std::isfinite(length) && length > 0)) throw std::invalid_argument("make_spiky_sphere: length must be finite and > 0");
+  if (!(std::isfinite(length) && length > 0))
+    throw std::invalid_argument("make_spiky_sphere: length must be finite and > 0");
   if (rings < 1 || rings > 10000) throw std::invalid_argument("make_spiky_sphere: rings must be in [1, 10000]");
   Mesh mesh = make_icosphere(level);
   const auto n = mesh.positions.size();

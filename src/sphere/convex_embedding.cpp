@@ -1,4 +1,6 @@
 // Tutte embedding, Maxwell–Cremona lift and central projection (embedding.hpp: convex_embedding).
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -7,9 +9,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <Eigen/CholmodSupport>
-#include <Eigen/Sparse>
 
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/embedding.hpp"
@@ -49,7 +48,8 @@ std::vector<Point2> tutte_embedding(const VertexRings& rings, const Triangle& ou
   Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
   matrix.setFromTriplets(entries.begin(), entries.end());
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky(matrix);
-  if (cholesky.info() != Eigen::Success) throw std::runtime_error("convex_embedding: the Tutte system could not be factorized");
+  if (cholesky.info() != Eigen::Success)
+    throw std::runtime_error("convex_embedding: the Tutte system could not be factorized");
   Eigen::MatrixXd solution = cholesky.solve(rhs);
   // Iterative refinement: the residual in long double, the correction from the same factor.
   for (int step = 0; step < 2; ++step) {
@@ -74,7 +74,8 @@ std::vector<Point2> tutte_embedding(const VertexRings& rings, const Triangle& ou
 // gets a plane h_t(x) = g·x + c so that crossing edge i->j (face t on its left) from t adds
 // ω·cross(p_j - p_i, x - p_i): a concave dome over the outer triangle whose faces, with the outer
 // triangle below them, bound a convex polyhedron. Returns each vertex's height.
-std::vector<double> lift(const std::vector<Point2>& plane, const std::vector<Triangle>& triangles, std::size_t outer_face) {
+std::vector<double> lift(const std::vector<Point2>& plane, const std::vector<Triangle>& triangles,
+                         std::size_t outer_face) {
   const auto n = plane.size();
   struct Plane {
     double gx, gy, c;
@@ -101,7 +102,8 @@ std::vector<double> lift(const std::vector<Point2>& plane, const std::vector<Tri
     const auto& tri = triangles[t];
     for (int k = 0; k < 3; ++k) {
       const auto v = tri[k];
-      if (!has_height[v]) height[v] = planes[t].gx * plane[v][0] + planes[t].gy * plane[v][1] + planes[t].c, has_height[v] = 1;
+      if (!has_height[v])
+        height[v] = planes[t].gx * plane[v][0] + planes[t].gy * plane[v][1] + planes[t].c, has_height[v] = 1;
     }
     for (int k = 0; k < 3; ++k) {
       const auto i = tri[k], j = tri[(k + 1) % 3];

@@ -18,8 +18,8 @@ std::int32_t farthest_in_edges(const Mesh& mesh, std::int32_t north) {
   for (std::int32_t v = 0; v < n; ++v) {
     if (distance[v] < 2) continue;
     if (best < 0 || distance[v] > distance[best] ||
-        (distance[v] == distance[best] &&
-         squared_distance(mesh.positions[v], mesh.positions[north]) > squared_distance(mesh.positions[best], mesh.positions[north])))
+        (distance[v] == distance[best] && squared_distance(mesh.positions[v], mesh.positions[north]) >
+                                              squared_distance(mesh.positions[best], mesh.positions[north])))
       best = v;
   }
   return best;
@@ -36,7 +36,8 @@ std::vector<Vec3> fallback_map(const Mesh& mesh, std::int32_t north, std::int32_
   report = FallbackReport{};
   bool adjacent = false;
   for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) adjacent = adjacent || (t[k] == north && (t[(k + 1) % 3] == south || t[(k + 2) % 3] == south));
+    for (int k = 0; k < 3; ++k)
+      adjacent = adjacent || (t[k] == north && (t[(k + 1) % 3] == south || t[(k + 2) % 3] == south));
   report.south = adjacent ? farthest_in_edges(mesh, north) : south;
   if (report.south < 0) return {};
   report.ran = true;

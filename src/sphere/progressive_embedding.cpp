@@ -114,8 +114,8 @@ class ShrinkingTriangulation {
 // join the poles, preferring short diagonals on the surface; -1 if there is none. A fan from a corner
 // (the removal is a half-edge collapse into that corner) keeps the polygon star-shaped on any valid map:
 // points near the apex see the whole polygon, whatever its number of corners.
-int choose_fan(const ShrinkingTriangulation& mesh, const std::vector<std::int32_t>& ring, const std::vector<Vec3>& positions,
-               std::int32_t north, std::int32_t south) {
+int choose_fan(const ShrinkingTriangulation& mesh, const std::vector<std::int32_t>& ring,
+               const std::vector<Vec3>& positions, std::int32_t north, std::int32_t south) {
   const auto k = ring.size();
   if (k == 3) return 0;
   int best = -1;
@@ -144,7 +144,8 @@ Hierarchy build_hierarchy(const Mesh& mesh, std::int32_t north, std::int32_t sou
   while (true) {
     std::vector<std::pair<std::int32_t, std::int32_t>> candidates;  // (degree, vertex)
     for (std::int32_t v = 0; v < n; ++v)
-      if (!removed[v] && v != north && v != south && shrinking.degree(v) <= kMaxRemovedDegree) candidates.emplace_back(shrinking.degree(v), v);
+      if (!removed[v] && v != north && v != south && shrinking.degree(v) <= kMaxRemovedDegree)
+        candidates.emplace_back(shrinking.degree(v), v);
     std::sort(candidates.begin(), candidates.end());
     std::vector<char> blocked(n, 0);
     std::vector<Removal> level;
@@ -206,7 +207,8 @@ double kernel_point_in_chart(const std::vector<Vec3>& normal, const Vec3& centre
   const auto area = region(0.5 * low);
   if (area.size() < 3) return 0;
   Point2 mean{0, 0};
-  for (const auto& q : area) mean[0] += q[0] / static_cast<double>(area.size()), mean[1] += q[1] / static_cast<double>(area.size());
+  for (const auto& q : area)
+    mean[0] += q[0] / static_cast<double>(area.size()), mean[1] += q[1] / static_cast<double>(area.size());
   point = normalized(centre + mean[0] * e1 + mean[1] * e2);
   double margin = INFINITY;
   for (const auto& n : normal) margin = std::min(margin, dot(point, n));
@@ -249,7 +251,8 @@ LocalIndex local_index(std::int32_t vertex_count, const std::vector<Triangle>& t
   for (const auto& tri : triangles)
     for (const auto v : tri) index.local[v] = 0;
   for (std::int32_t v = 0; v < vertex_count; ++v)
-    if (index.local[v] == 0) index.local[v] = static_cast<std::int32_t>(index.vertices.size()), index.vertices.push_back(v);
+    if (index.local[v] == 0)
+      index.local[v] = static_cast<std::int32_t>(index.vertices.size()), index.vertices.push_back(v);
   return index;
 }
 
@@ -279,7 +282,8 @@ SphereOptimizeReport optimize_level(const Mesh& mesh, const std::vector<Triangle
 bool star_is_valid(const std::vector<Vec3>& sphere, const Removal& removal) {
   const auto k = removal.link.size();
   for (std::size_t i = 0; i < k; ++i)
-    if (orientation_sign(sphere[removal.vertex], sphere[removal.link[i]], sphere[removal.link[(i + 1) % k]]) <= 0) return false;
+    if (orientation_sign(sphere[removal.vertex], sphere[removal.link[i]], sphere[removal.link[(i + 1) % k]]) <= 0)
+      return false;
   return true;
 }
 
@@ -319,7 +323,8 @@ bool embed_base(std::int32_t vertex_count, const std::vector<Triangle>& base, st
 }  // namespace
 
 ProgressiveEmbeddingReport progressive_embedding(const Mesh& mesh, std::int32_t north, std::int32_t south,
-                                                 std::vector<Vec3>& sphere, const ProgressiveEmbeddingOptions& options) {
+                                                 std::vector<Vec3>& sphere,
+                                                 const ProgressiveEmbeddingOptions& options) {
   const auto n = static_cast<std::int32_t>(mesh.positions.size());
   if (north < 0 || south < 0 || north >= n || south >= n || north == south)
     throw std::invalid_argument("progressive_embedding: poles " + std::to_string(north) + ", " + std::to_string(south) +
@@ -345,13 +350,15 @@ ProgressiveEmbeddingReport progressive_embedding(const Mesh& mesh, std::int32_t 
       SphereOptimizeOptions thorough = coarse;
       thorough.relative_tolerance = options.final_tolerance;
       report.optimizer_iterations +=
-          optimize_level(mesh, hierarchy.meshes[level + 1], north, south, sphere, thorough, options.final_iterations).iterations;
+          optimize_level(mesh, hierarchy.meshes[level + 1], north, south, sphere, thorough, options.final_iterations)
+              .iterations;
       report.failed_insertions = insert_level(removals, sphere);
       if (report.failed_insertions > 0) return report;
     }
     if (level > 0)
       report.optimizer_iterations +=
-          optimize_level(mesh, hierarchy.meshes[level], north, south, sphere, coarse, options.level_iterations).iterations;
+          optimize_level(mesh, hierarchy.meshes[level], north, south, sphere, coarse, options.level_iterations)
+              .iterations;
   }
   // The input's own triangles, with their own shapes.
   SphereOptimizeOptions fine = options.optimize;

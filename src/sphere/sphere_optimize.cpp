@@ -1,5 +1,5 @@
-#include "spheremap/sphere/optimize.hpp"
-
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,18 +7,17 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/CholmodSupport>
-#include <Eigen/Sparse>
-
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/sphere/optimize.hpp"
 #include "triangle_energy.hpp"
 
 namespace spheremap {
 
 const char* to_string(SphereEnergy energy) {
   switch (energy) {
-    case SphereEnergy::kSymmetricDirichlet: return "symmetric-dirichlet";
+    case SphereEnergy::kSymmetricDirichlet:
+      return "symmetric-dirichlet";
   }
   return "?";
 }
@@ -97,7 +96,8 @@ class Optimizer {
         break;
       }
       double largest = 0;
-      for (Eigen::Index i = 0; i + 1 < step.size(); i += 2) largest = std::max(largest, std::hypot(step[i], step[i + 1]));
+      for (Eigen::Index i = 0; i + 1 < step.size(); i += 2)
+        largest = std::max(largest, std::hypot(step[i], step[i + 1]));
       double alpha = largest > kMaxVertexStep ? kMaxVertexStep / largest : 1.0;
       bool accepted = false;
       std::vector<Vec3> trial(sphere_);
@@ -255,7 +255,8 @@ SphereOptimizeReport optimize_on_sphere(const std::vector<Vec3>& rest, const std
                                 " fixed flags");
   Optimizer optimizer(rest, triangles, sphere, fixed, options);
   if (!optimizer.valid(sphere) || !std::isfinite(optimizer.energy(sphere)))
-    throw std::invalid_argument("optimize_on_sphere: the start is not a valid map (a triangle is not positively oriented)");
+    throw std::invalid_argument(
+        "optimize_on_sphere: the start is not a valid map (a triangle is not positively oriented)");
   return optimizer.run();
 }
 

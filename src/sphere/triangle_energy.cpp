@@ -101,7 +101,8 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
 
 double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
   switch (energy) {
-    case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c);
+    case SphereEnergy::kSymmetricDirichlet:
+      return symmetric_dirichlet(rest, a, b, c);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -109,7 +110,8 @@ double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3
 double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c,
                        Vector9& gradient, Matrix9& hessian) {
   switch (energy) {
-    case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
+    case SphereEnergy::kSymmetricDirichlet:
+      return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }

@@ -164,15 +164,18 @@ TEST_F(Cli, GeneratedHardCaseIsCertifiedByTheFallbackAndSaysSo) {
   EXPECT_GT(report["map"]["fallback"]["levels"].get<int>(), 0);
   EXPECT_TRUE(report["timings_seconds"].contains("fallback"));
   // A map certified without it carries no fallback entry at all.
-  const auto stacked = (folder_ / "ico.ply").string();
-  ASSERT_EQ(run_cli("generate icosphere --level 2 -o " + stacked).exit_code, 0);
-  ASSERT_EQ(run_cli("map " + stacked + " -o " + (folder_ / "ico").string()).exit_code, 0);
+  const auto ico = (folder_ / "ico.ply").string();
+  ASSERT_EQ(run_cli("generate icosphere --level 2 -o " + ico).exit_code, 0);
+  ASSERT_EQ(run_cli("map " + ico + " -o " + (folder_ / "ico").string()).exit_code, 0);
   const auto plain = nlohmann::json::parse(slurp(folder_ / "ico" / "report.json"));
   EXPECT_FALSE(plain["map"].contains("fallback"));
   EXPECT_FALSE(plain["timings_seconds"].contains("fallback"));
   // The other generated hard cases.
-  for (const char* shape : {"stacked --vertices 200 --nesting 0.5", "tube-c --segments 4 --rings 20", "spiky --level 1 --spikes 4 --spike-rings 8"})
-    EXPECT_EQ(run_cli(std::string("generate ") + shape + " -q -o " + (folder_ / "shape.ply").string()).exit_code, 0) << shape;
+  for (const char* shape : {"stacked --vertices 200 --nesting 0.5", "tube-c --segments 4 --rings 20",
+                            "spiky --level 1 --spikes 4 --spike-rings 8"}) {
+    const auto made = run_cli(std::string("generate ") + shape + " -q -o " + (folder_ / "shape.ply").string());
+    EXPECT_EQ(made.exit_code, 0) << shape;
+  }
   EXPECT_EQ(run_cli("generate stacked --vertices 3 -o " + (folder_ / "bad.ply").string()).exit_code, 1);
 }
 

@@ -18,7 +18,8 @@ namespace {
 
 double signed_volume(const Mesh& mesh) {
   double six_volume = 0;
-  for (const auto& [a, b, c] : mesh.triangles) six_volume += dot(mesh.positions[a], cross(mesh.positions[b], mesh.positions[c]));
+  for (const auto& [a, b, c] : mesh.triangles)
+    six_volume += dot(mesh.positions[a], cross(mesh.positions[b], mesh.positions[c]));
   return six_volume / 6;
 }
 

@@ -78,7 +78,8 @@ TEST(ConvexEmbedding, TuttesTinyTrianglesAreWhyItIsOnlyTheBase) {
 
 TEST(ProgressiveEmbedding, HardMeshesBecomeValidMaps) {
   const std::vector<Mesh> meshes{make_bent_tube(TubeBend::kU, 4, 80), make_bent_tube(TubeBend::kC, 3, 40),
-                                 make_stacked_triangulation(300, 0.9, 1), make_spiky_sphere(1, 6, 5, 10, 1), bipyramid(3)};
+                                 make_stacked_triangulation(300, 0.9, 1), make_spiky_sphere(1, 6, 5, 10, 1),
+                                 bipyramid(3)};
   for (const auto& mesh : meshes) {
     const auto n = static_cast<std::int32_t>(mesh.vertex_count());
     const std::int32_t north = n - 2;  // an apex of the bipyramid, an end of the tubes

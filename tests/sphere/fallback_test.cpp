@@ -67,8 +67,8 @@ Mesh prepared(const Mesh& mesh) {
 void map_stacked(int vertices, const std::vector<double>& nestings, std::uint32_t seeds, Tally& tally) {
   for (const double nesting : nestings)
     for (std::uint32_t seed = 1; seed <= seeds; ++seed) {
-      const std::string what = "stacked " + std::to_string(vertices) + " nesting " + std::to_string(nesting) + " seed " +
-                               std::to_string(seed);
+      const std::string what = "stacked " + std::to_string(vertices) + " nesting " + std::to_string(nesting) +
+                               " seed " + std::to_string(seed);
       map_and_check(prepared(make_stacked_triangulation(vertices, nesting, seed)), what, tally);
     }
 }
@@ -130,7 +130,8 @@ TEST(FallbackFamilies, RandomPolePairsOnCoarseMeshes) {
   Tally tally;
   const std::vector<std::pair<std::string, Mesh>> meshes{
       {"U tube 4x21 (86 vertices)", make_bent_tube(TubeBend::kU, 4, 21)},
-      {"U tube 4x21, flipped and perturbed", perturb_vertices(random_edge_flips(make_bent_tube(TubeBend::kU, 4, 21), 0.3, 3), 0.2, 3)},
+      {"U tube 4x21, flipped and perturbed",
+       perturb_vertices(random_edge_flips(make_bent_tube(TubeBend::kU, 4, 21), 0.3, 3), 0.2, 3)},
       {"C tube 3x30", make_bent_tube(TubeBend::kC, 3, 30)},
       {"stacked 200", make_stacked_triangulation(200, 0.3, 7)},
       {"spiky 0/12/4/10", make_spiky_sphere(0, 12, 4, 10, 3)},
@@ -139,8 +140,10 @@ TEST(FallbackFamilies, RandomPolePairsOnCoarseMeshes) {
     const Mesh input = prepared(mesh);
     int k = 0;
     for (const auto& poles : random_pole_pairs(input, 42))
-      map_and_check(input, name + ", poles #" + std::to_string(k++) + " " + std::to_string(poles.first) + "," +
-                               std::to_string(poles.second), tally, poles);
+      map_and_check(input,
+                    name + ", poles #" + std::to_string(k++) + " " + std::to_string(poles.first) + "," +
+                        std::to_string(poles.second),
+                    tally, poles);
   }
   EXPECT_EQ(tally.certified, tally.maps);
   EXPECT_GE(tally.by_fallback, 12);  // the C tube's and the stacked mesh's pairs, among others
@@ -153,7 +156,9 @@ TEST(Fallback, IsWhatCertifies) {
   const Mesh u_tube = prepared(make_bent_tube(TubeBend::kU, 3, 40));
   const Mesh stacked = prepared(make_stacked_triangulation(300, 0.9, 1));
   const std::vector<std::pair<const Mesh*, std::optional<std::pair<std::int32_t, std::int32_t>>>> cases{
-      {&c_tube, std::make_pair(27, 32)}, {&c_tube, std::make_pair(62, 51)}, {&stacked, std::nullopt},
+      {&c_tube, std::make_pair(27, 32)},
+      {&c_tube, std::make_pair(62, 51)},
+      {&stacked, std::nullopt},
       {&u_tube, std::nullopt}};
   for (const auto& [mesh, poles] : cases) {
     MapOptions options;

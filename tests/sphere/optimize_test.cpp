@@ -47,7 +47,8 @@ TEST(TriangleEnergy, GradientAndHessianMatchFiniteDifferences) {
     EXPECT_NEAR(gradient[i], numeric, 1e-5 * std::max(1.0, std::abs(numeric))) << "gradient " << i;
     const detail::Vector9 column = (g_up - g_down) / (2 * step);
     for (int j = 0; j < 9; ++j)
-      EXPECT_NEAR(hessian(j, i), column[j], 1e-4 * std::max(1.0, hessian.cwiseAbs().maxCoeff())) << "hessian " << j << "," << i;
+      EXPECT_NEAR(hessian(j, i), column[j], 1e-4 * std::max(1.0, hessian.cwiseAbs().maxCoeff()))
+          << "hessian " << j << "," << i;
   }
 }
 
@@ -115,7 +116,8 @@ TEST(OptimizeOnSphere, RefusesAnInvalidStart) {
   points[0] = -1.0 * points[0];  // to the antipode: every triangle around it folds
   std::vector<char> fixed(points.size(), 0);
   EXPECT_THROW(optimize_on_sphere(ico.positions, ico.triangles, points, fixed), std::invalid_argument);
-  EXPECT_THROW(optimize_on_sphere(ico.positions, ico.triangles, points, std::vector<char>(3, 0)), std::invalid_argument);
+  EXPECT_THROW(optimize_on_sphere(ico.positions, ico.triangles, points, std::vector<char>(3, 0)),
+               std::invalid_argument);
 }
 
 TEST(OptimizeOnSphere, NothingFreeIsAlreadyOptimal) {

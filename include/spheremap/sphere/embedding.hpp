@@ -37,24 +37,27 @@ struct ProgressiveEmbeddingOptions {
 };
 
 struct ProgressiveEmbeddingReport {
-  int levels = 0;                  // levels of removals (each an independent set of vertices)
-  std::int32_t base_vertices = 0;  // the mesh left when no vertex can be removed, embedded convexly
-  std::int64_t insertions = 0;     // vertices put back, each inside the kernel of its link polygon
+  int levels = 0;                      // levels of removals (each an independent set of vertices)
+  std::int32_t base_vertices = 0;      // the mesh left when no vertex can be removed, embedded convexly
+  std::int64_t insertions = 0;         // vertices put back, each inside the kernel of its link polygon
   std::int64_t failed_insertions = 0;  // kernels too thin for doubles (then the map is not valid)
-  int optimizer_iterations = 0;    // Newton steps over all levels
-  int final_iterations = 0;        // of them, on the finished map
-  double energy_before = 0;        // of the finished map before its own optimization (per unit area)
+  int optimizer_iterations = 0;        // Newton steps over all levels
+  int final_iterations = 0;            // of them, on the finished map
+  double energy_before = 0;            // of the finished map before its own optimization (per unit area)
   double energy_after = 0;
   std::string final_stop_reason;
-  bool valid = false;              // every triangle positively oriented (exact), north = +z, south = -z
+  bool valid = false;  // every triangle positively oriented (exact), north = +z, south = -z
 };
 
-/// A valid map of `mesh` with north at +z and south at -z: vertices of degree at most 5 (never the
-/// poles) are removed in rounds of independent sets, each hole re-triangulated by a fan that creates no
-/// duplicate edge and no north-south edge, down to a small base embedded by convex_embedding; the
-/// vertices are then put back in reverse, each inside the spherical kernel of its link polygon (every
-/// polygon of at most 5 corners is star-shaped), and every level is optimized (optimize_on_sphere) so
-/// that the next level's kernels stay wide. `sphere` receives one unit vector per vertex.
+/// A valid map of `mesh` with north at +z and south at -z. Vertices of degree at most 8 (never the
+/// poles) are removed in rounds of independent sets, lowest degree first, each by a half-edge collapse
+/// into a neighbour (its hole filled by the fan from that neighbour) that creates no duplicate edge and
+/// no north-south edge, down to a base embedded by convex_embedding (5 vertices on every mesh tried).
+/// The vertices are then put back level by level in reverse, each inside the spherical kernel of its
+/// link polygon, which the fan makes non-empty on any valid map (points near the fan's apex see the
+/// whole polygon); each level is optimized (optimize_on_sphere, towards equilateral triangles of the
+/// surface's areas) so that the next level's kernels stay wide, and the finished map towards the
+/// surface's own triangles. `sphere` receives one unit vector per vertex.
 /// Preconditions: `mesh` closed, oriented outward, genus 0, 2-manifold, at least 5 vertices; north and
 /// south not joined by an edge. Throws std::invalid_argument if the poles are out of range, equal or
 /// adjacent. report.valid says whether every triangle ended positively oriented (certify the result).

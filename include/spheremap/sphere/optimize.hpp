@@ -36,10 +36,10 @@ struct SphereOptimizeOptions {
 };
 
 struct SphereOptimizeReport {
-  int iterations = 0;          // accepted Newton steps
-  double energy_before = 0;    // of the start, per unit of the map's area
+  int iterations = 0;        // accepted Newton steps
+  double energy_before = 0;  // of the start, per unit of the map's area
   double energy_after = 0;
-  std::string stop_reason;     // "converged", "iterations", "line-search" or "factorization"
+  std::string stop_reason;  // "converged", "iterations", "line-search" or "factorization"
 };
 
 /// Minimizes `energy` over the positions `sphere` of the vertices not marked in `fixed`, keeping every
