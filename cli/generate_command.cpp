@@ -27,7 +27,7 @@ struct GenerateCommand {
         ->required()
         ->check(CLI::IsMember({"icosphere", "ellipsoid", "dumbbell", "cube", "stacked", "tube-u", "tube-c", "spiky"}));
     add_output_option(command, output, "Output .ply file");
-    command->add_option("--level", level, "icosphere/ellipsoid: subdivision level (10*4^level+2 vertices)")
+    command->add_option("--level", level, "icosphere/ellipsoid/spiky: subdivision level (10*4^level+2 vertices)")
         ->check(CLI::Range(0, 10));
     command->add_option("--stretch", stretch, "ellipsoid: length of the z axis (x and y are 1)")
         ->check(CLI::PositiveNumber);
