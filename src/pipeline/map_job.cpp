@@ -292,8 +292,8 @@ std::string summary_text(const MapJobResult& result) {
     text += fmt::format(
         "  fallback (the map above was not certified): progressive embedding, {} levels down to {} vertices, "
         "{} re-insertions, {} optimizer iterations ({} on the whole mesh, {}), {}\n",
-        e.levels, e.base_vertices, e.insertions, e.optimizer_iterations, e.final_iterations, e.final_stop_reason,
-        e.valid ? "valid" : "NOT VALID (doubles could not hold it)");
+        e.levels, e.base_vertices, e.insertions, e.optimizer_iterations, e.final_iterations,
+        to_string(e.final_stop_reason), e.valid ? "valid" : "NOT VALID (doubles could not hold it)");
   }
   text += fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
                       c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage,

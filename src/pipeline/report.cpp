@@ -170,7 +170,7 @@ nlohmann::json fallback_json(const FallbackReport& fallback) {
           {"failed_insertions", e.failed_insertions},
           {"optimizer_iterations", e.optimizer_iterations},
           {"final_iterations", e.final_iterations},
-          {"final_stop_reason", e.final_stop_reason},
+          {"final_stop_reason", to_string(e.final_stop_reason)},
           {"energy", to_string(SphereEnergy::kSymmetricDirichlet)},
           {"energy_before", e.energy_before},
           {"energy_after", e.energy_after},

@@ -22,6 +22,17 @@ const char* to_string(SphereEnergy energy) {
   return "?";
 }
 
+const char* to_string(OptimizeStop stop) {
+  switch (stop) {
+    case OptimizeStop::kNone: return "";
+    case OptimizeStop::kConverged: return "converged";
+    case OptimizeStop::kIterations: return "iterations";
+    case OptimizeStop::kLineSearch: return "line-search";
+    case OptimizeStop::kFactorization: return "factorization";
+  }
+  return "?";
+}
+
 namespace {
 
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
@@ -72,9 +83,9 @@ class Optimizer {
     SphereOptimizeReport report;
     double current = energy(sphere_);
     report.energy_before = report.energy_after = current / total_area_;
-    report.stop_reason = "iterations";
+    report.stop_reason = OptimizeStop::kIterations;
     if (free_count_ == 0) {
-      report.stop_reason = "converged";
+      report.stop_reason = OptimizeStop::kConverged;
       return report;
     }
     for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
@@ -86,13 +97,13 @@ class Optimizer {
       assemble(e1, e2, gradient, hessian);
       Eigen::VectorXd step;
       if (!solve(hessian, gradient, step)) {
-        report.stop_reason = "factorization";
+        report.stop_reason = OptimizeStop::kFactorization;
         break;
       }
       double slope = gradient.dot(step);
       if (!(slope < 0)) step = -gradient, slope = -gradient.squaredNorm();
       if (slope == 0) {
-        report.stop_reason = "converged";
+        report.stop_reason = OptimizeStop::kConverged;
         break;
       }
       double largest = 0;
@@ -112,7 +123,7 @@ class Optimizer {
         accepted = trial_energy <= current + kArmijo * alpha * slope && valid(trial);
       }
       if (!accepted) {
-        report.stop_reason = "line-search";
+        report.stop_reason = OptimizeStop::kLineSearch;
         break;
       }
       sphere_.swap(trial);
@@ -120,7 +131,7 @@ class Optimizer {
       const double drop = current - trial_energy;
       current = trial_energy;
       if (drop < options_.relative_tolerance * current) {
-        report.stop_reason = "converged";
+        report.stop_reason = OptimizeStop::kConverged;
         break;
       }
     }

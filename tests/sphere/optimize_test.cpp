@@ -107,7 +107,8 @@ TEST(OptimizeOnSphere, LiftsCollapsedTriangles) {
   ASSERT_EQ(before.folded, 0);
   ASSERT_GT(before.collapsed, 0);
   const auto report = optimize_on_sphere(ico.positions, ico.triangles, points, std::vector<char>(points.size(), 0));
-  EXPECT_TRUE(certify_sphere_map(ico, points).certified()) << report.stop_reason << " after " << report.iterations;
+  EXPECT_TRUE(certify_sphere_map(ico, points).certified())
+      << to_string(report.stop_reason) << " after " << report.iterations;
 }
 
 TEST(OptimizeOnSphere, RefusesAnInvalidStart) {

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "spheremap/mesh.hpp"
@@ -45,7 +44,7 @@ struct ProgressiveEmbeddingReport {
   int final_iterations = 0;            // of them, on the finished map
   double energy_before = 0;            // of the finished map before its own optimization (per unit area)
   double energy_after = 0;
-  std::string final_stop_reason;
+  OptimizeStop final_stop_reason = OptimizeStop::kNone;  // of the finished map's optimization
   bool valid = false;  // every triangle positively oriented (exact), north = +z, south = -z
 };
 

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "spheremap/mesh.hpp"
@@ -35,11 +34,20 @@ struct SphereOptimizeOptions {
   double min_rest_angle = 1e-3;
 };
 
+/// Why optimize_on_sphere stopped (report.json: map.fallback.final_stop_reason).
+enum class OptimizeStop {
+  kNone,           // "": not run
+  kConverged,      // "converged": an iteration lowered the energy by less than the tolerance, or nothing is free
+  kIterations,     // "iterations": max_iterations reached
+  kLineSearch,     // "line-search": no step along the descent direction kept the map valid and lowered the energy
+  kFactorization,  // "factorization": the Newton system could not be factorized
+};
+
 struct SphereOptimizeReport {
   int iterations = 0;        // accepted Newton steps
   double energy_before = 0;  // of the start, per unit of the map's area
   double energy_after = 0;
-  std::string stop_reason;  // "converged", "iterations", "line-search" or "factorization"
+  OptimizeStop stop_reason = OptimizeStop::kNone;
 };
 
 /// Minimizes `energy` over the positions `sphere` of the vertices not marked in `fixed`, keeping every
@@ -53,6 +61,8 @@ SphereOptimizeReport optimize_on_sphere(const std::vector<Vec3>& rest, const std
                                         std::vector<Vec3>& sphere, const std::vector<char>& fixed,
                                         const SphereOptimizeOptions& options = {});
 
+/// The names report.json uses (e.g. "symmetric-dirichlet", "converged"). Never throw.
 const char* to_string(SphereEnergy energy);
+const char* to_string(OptimizeStop stop);
 
 }  // namespace spheremap
