@@ -12,7 +12,7 @@ namespace spheremap::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// Re-weighting against collapse (the README's "The map" explains the choices). Each vertex whose
+// Re-weighting against collapse (docs/algorithm.md, "Collapse: re-weighting", explains the choices). Each vertex whose
 // normalized area ratio r (over its star) is below kReweightingTarget gets a step
 // ln g += kReweightingExponent · ln(r / target), averaged twice over the 1-ring and at most
 // kReweightingMaxStep per round; a round is kept only if it improves the map, else the step limit is

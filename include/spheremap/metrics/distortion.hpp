@@ -8,7 +8,7 @@
 
 namespace spheremap {
 
-/// Every figure is defined in the README ("What the report means").
+/// Every figure is defined in docs/report.md.
 /// Degenerate cases: area figures average over triangles of nonzero surface area, using the unsigned
 /// spherical area (|ln ratio| with ratio floored at the smallest normal double, so a collapsed triangle
 /// weighs ~708 instead of making the mean infinite); a corner whose angle is undefined on either side

@@ -60,8 +60,8 @@ struct PreparedMesh {
   PrepareReport report;
 };
 
-/// Triangulates polygons (fan from the first corner), welds vertices, drops degenerate and duplicate
-/// triangles and unreferenced vertices, then checks, in this order: non-manifold edges (shared by more
+/// Triangulates polygons (fan from the first corner whose diagonals are not edges), welds vertices, drops degenerate
+/// and duplicate triangles and unreferenced vertices, then checks, in this order: non-manifold edges (shared by more
 /// than two triangles), boundary edges, non-manifold (pinched) vertices, several components (unless
 /// options.component says which), orientability, genus. Orients every triangle consistently and
 /// outward (positive enclosed volume).
