@@ -14,8 +14,8 @@ extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned /*num_thre
 
 // Likewise for the whole process: CHOLMOD reads the clock (SuiteSparse_time) around every BLAS call of its
 // supernodal factorization to fill timing statistics of cholmod_common that spheremap never reads, and
-// UMFPACK times its phases for its Info array, which Eigen's UmfPackLU does not read either. The clock
-// reads were 4% of the re-weighting stage of 5hr7's default map (BENCHMARKS.md, "Ninth session"). Neither
-// library decides anything by the time, so a clock that never moves changes no result (the same test
-// compares the command's map with the library's, which reads the real clock).
+// UMFPACK times its phases for its Info array, which Eigen's UmfPackLU does not read either; those reads are
+// a measurable part of the re-weighting stage. Neither library decides anything by the time, so a clock that
+// never moves changes no result (the same test compares the command's map with the library's, which reads
+// the real clock).
 extern "C" double SuiteSparse_time(void) { return 0; }
