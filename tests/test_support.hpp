@@ -6,19 +6,59 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "spheremap/geometry/predicates.hpp"
+#include "spheremap/geometry/vec.hpp"
 #include "spheremap/mesh.hpp"
+#include "spheremap/sphere/certify.hpp"
+#include "spheremap/surface/grid.hpp"
 #include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap::testing_support {
+
+/// An n x n x n grid of `function` at its sample points (spacing, origin as given).
+Grid3<double> sample(std::int64_t n, double spacing, const Vec3& origin, auto&& function) {
+  Grid3<double> grid;
+  grid.size = {n, n, n};
+  grid.spacing = spacing;
+  grid.origin = origin;
+  grid.values.resize(static_cast<std::size_t>(grid.count()));
+  for (std::int64_t k = 0; k < n; ++k)
+    for (std::int64_t j = 0; j < n; ++j)
+      for (std::int64_t i = 0; i < n; ++i) grid.values[grid.index(i, j, k)] = function(grid.point(i, j, k));
+  return grid;
+}
+
+/// The volume a closed mesh encloses: positive when it is oriented outward.
+inline double signed_volume(const Mesh& mesh) {
+  double six_volume = 0;
+  for (const auto& [a, b, c] : mesh.triangles)
+    six_volume += dot(mesh.positions[a], cross(mesh.positions[b], mesh.positions[c]));
+  return six_volume / 6;
+}
+
+/// Every triangle of `mesh` positively oriented on the sphere `sphere` (exact predicate) and the solid
+/// angles summing to 4π: a valid map, checked independently of the certificate's bookkeeping.
+inline void expect_valid_on_sphere(const Mesh& mesh, const std::vector<Vec3>& sphere, const std::string& what) {
+  std::int64_t negative = 0;
+  double solid_angle = 0;
+  for (const auto& t : mesh.triangles) {
+    negative += orientation_sign(sphere[t[0]], sphere[t[1]], sphere[t[2]]) <= 0;
+    solid_angle += signed_solid_angle(sphere[t[0]], sphere[t[1]], sphere[t[2]]);
+  }
+  EXPECT_EQ(negative, 0) << what;
+  EXPECT_NEAR(solid_angle, 4 * std::numbers::pi, 1e-8) << what;
+}
 
 /// The bytes of a file ("" if it cannot be read).
 inline std::string slurp(const std::filesystem::path& path) {

@@ -19,32 +19,12 @@
 
 namespace spheremap::repair_testing {
 
-Grid3<double> sample(std::int64_t n, double spacing, const Vec3& origin, auto&& function) {
-  Grid3<double> grid;
-  grid.size = {n, n, n};
-  grid.spacing = spacing;
-  grid.origin = origin;
-  grid.values.resize(static_cast<std::size_t>(grid.count()));
-  for (std::int64_t k = 0; k < n; ++k)
-    for (std::int64_t j = 0; j < n; ++j)
-      for (std::int64_t i = 0; i < n; ++i) grid.values[grid.index(i, j, k)] = function(grid.point(i, j, k));
-  return grid;
-}
+using testing_support::sample;
 
 // One closed sphere: a single component with V - E + F = 2.
 inline void expect_one_sphere(const Mesh& mesh) {
   testing_support::expect_closed_oriented_manifold(mesh);
-  std::vector<std::int32_t> parent(mesh.vertex_count());
-  for (std::size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<std::int32_t>(v);
-  auto find = [&](std::int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
-  std::int64_t roots = 0;
-  for (std::size_t v = 0; v < parent.size(); ++v)
-    roots += find(static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v);
-  EXPECT_EQ(roots, 1);
+  EXPECT_EQ(mesh_components(mesh).size(), 1u);
   const auto faces = static_cast<std::int64_t>(mesh.triangle_count());
   EXPECT_EQ(static_cast<std::int64_t>(mesh.vertex_count()) - faces * 3 / 2 + faces, 2);
 }

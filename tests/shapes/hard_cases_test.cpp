@@ -16,12 +16,7 @@
 namespace spheremap {
 namespace {
 
-double signed_volume(const Mesh& mesh) {
-  double six_volume = 0;
-  for (const auto& [a, b, c] : mesh.triangles)
-    six_volume += dot(mesh.positions[a], cross(mesh.positions[b], mesh.positions[c]));
-  return six_volume / 6;
-}
+using testing_support::signed_volume;
 
 // Closed oriented 2-manifold with Euler characteristic 2, outward, every triangle of positive area;
 // returns the smallest triangle area relative to the total.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,12 +21,7 @@ namespace {
 
 // Self-contained checks (no dependency on the topology stage, which is tested on its own).
 
-double signed_volume(const Mesh& mesh) {
-  double six_volume = 0;
-  for (const auto& [a, b, c] : mesh.triangles)
-    six_volume += dot(mesh.positions[a], cross(mesh.positions[b], mesh.positions[c]));
-  return six_volume / 6;
-}
+using testing_support::signed_volume;
 
 std::vector<int> vertex_degrees(const Mesh& mesh) {
   std::vector<int> degree(mesh.vertex_count(), 0);

@@ -6,6 +6,8 @@
 // left uncertified (FallbackIsWhatCertifies checks a few of them with the fallback switched off).
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -41,14 +43,7 @@ SphereMap map_and_check(const Mesh& mesh, const std::string& what, Tally& tally,
   EXPECT_TRUE(map.certificate.certified())
       << what << ": " << to_string(map.diagnostics.construction.method) << ", folded " << map.certificate.folded
       << ", collapsed " << map.certificate.collapsed << ", fallback valid " << fallback.embedding.valid;
-  std::int64_t negative = 0;
-  double solid_angle = 0;
-  for (const auto& t : mesh.triangles) {
-    negative += orientation_sign(map.sphere[t[0]], map.sphere[t[1]], map.sphere[t[2]]) <= 0;
-    solid_angle += signed_solid_angle(map.sphere[t[0]], map.sphere[t[1]], map.sphere[t[2]]);
-  }
-  EXPECT_EQ(negative, 0) << what;
-  EXPECT_NEAR(solid_angle, 4 * std::numbers::pi, 1e-8) << what;
+  testing_support::expect_valid_on_sphere(mesh, map.sphere, what);
   if (by_fallback) {
     EXPECT_TRUE(fallback.ran && fallback.embedding.valid) << what;
     // The poles are antipodal: θ is measured from north, and south (or the stand-in) is at θ = π.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <iostream>
@@ -24,14 +26,7 @@ void expect_certified(const Mesh& mesh, const SphereMap& map, const std::string&
   ASSERT_EQ(map.sphere.size(), mesh.vertex_count()) << what;
   EXPECT_TRUE(map.certificate.certified()) << what << ": folded " << map.certificate.folded << ", collapsed "
                                            << map.certificate.collapsed << ", coverage " << map.certificate.coverage;
-  std::int64_t negative = 0;
-  double solid_angle = 0;
-  for (const auto& t : mesh.triangles) {
-    negative += orientation_sign(map.sphere[t[0]], map.sphere[t[1]], map.sphere[t[2]]) <= 0;
-    solid_angle += signed_solid_angle(map.sphere[t[0]], map.sphere[t[1]], map.sphere[t[2]]);
-  }
-  EXPECT_EQ(negative, 0) << what;
-  EXPECT_NEAR(solid_angle, 4 * std::numbers::pi, 1e-8) << what;
+  testing_support::expect_valid_on_sphere(mesh, map.sphere, what);
   for (const auto& p : map.sphere) ASSERT_NEAR(norm(p), 1.0, 1e-12) << what;
   ASSERT_EQ(map.theta.size(), mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {

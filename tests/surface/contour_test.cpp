@@ -16,17 +16,7 @@
 namespace spheremap {
 namespace {
 
-Grid3<double> sample(std::int64_t n, double spacing, const Vec3& origin, auto&& function) {
-  Grid3<double> grid;
-  grid.size = {n, n, n};
-  grid.spacing = spacing;
-  grid.origin = origin;
-  grid.values.resize(static_cast<std::size_t>(grid.count()));
-  for (std::int64_t k = 0; k < n; ++k)
-    for (std::int64_t j = 0; j < n; ++j)
-      for (std::int64_t i = 0; i < n; ++i) grid.values[grid.index(i, j, k)] = function(grid.point(i, j, k));
-  return grid;
-}
+using testing_support::sample;
 
 using testing_support::expect_closed_oriented_manifold;
 
