@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "spheremap/mesh.hpp"
-#include "spheremap/render/colour_scale.hpp"
+#include "spheremap/properties/colour_scale.hpp"
 
 namespace spheremap {
 

@@ -1,5 +1,5 @@
 // Colour tables and the value -> entry rule (see colour_scale.hpp).
-#include "spheremap/render/colour_scale.hpp"
+#include "spheremap/properties/colour_scale.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Colour scales: the tables at published points, and the value -> entry rule.
-#include "spheremap/render/colour_scale.hpp"
+#include "spheremap/properties/colour_scale.hpp"
 
 #include <gtest/gtest.h>
 
