@@ -59,7 +59,12 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, PresetScope
   cmd->add_option("--model", options.structure.model, "Model to read: 1 = the first (default), N = the N-th")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--chains", chains, "Chains to keep, comma-separated (default: all)");
-  cmd->add_flag("--keep-hydrogens", options.structure.keep_hydrogens, "Keep hydrogen atoms (default: removed)");
+  cmd->add_flag("--keep-hydrogens", keep_hydrogens,
+                "Keep hydrogen atoms (default: removed from PDB and mmCIF files, kept from PQR files)");
+  cmd->add_flag("--no-hydrogens", no_hydrogens,
+                "Remove hydrogen atoms, also from PQR files (whose hydrogens otherwise count for charge; those of "
+                "radius 0 make no surface)")
+      ->excludes("--keep-hydrogens");
   cmd->add_flag("--keep-waters", options.structure.keep_waters, "Keep waters (default: removed)");
   cmd->add_flag("--no-hetero", no_hetero, "Remove ligands, ions and other HETATM groups (default: kept)");
   cmd->add_option("--radii", radii_file, "Radius table: 'ELEMENT RADIUS' per line (default: Bondi 1964)");
@@ -80,6 +85,7 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
       if (!chain.empty()) options.structure.chains.push_back(chain);
   }
   options.structure.keep_hetero = !no_hetero;
+  if (keep_hydrogens || no_hydrogens) options.structure.keep_hydrogens = keep_hydrogens;
   if (cavities) options.surface.carve_cavities = true;
   if (!radii_file.empty()) options.structure.radii = load_radius_table(radii_file);
   ExplicitOptions given;

@@ -16,7 +16,7 @@ namespace spheremap::cli {
 /// apply() after: apply() fills `options` (chains, hetero, radius table, --preset, simplification).
 struct StructureCliOptions {
   std::string chains, radii_file, preset;
-  bool no_hetero = false, cavities = false;
+  bool no_hetero = false, cavities = false, keep_hydrogens = false, no_hydrogens = false;
   double mesh_edge = -1, mesh_tolerance = -1;  // -1: not given
   CLI::App* command = nullptr;
   /// `scope` kMap: map and batch (simplification before the map, on by default for structures);

@@ -303,8 +303,8 @@ std::map<std::string, char> kept_alternate_locations(const std::vector<RawAtom>&
 }
 
 // Whether the options leave the atom out (counted in the report by why).
-bool filtered_out(const RawAtom& a, const StructureOptions& options, std::map<std::string, char>& kept_altloc,
-                  StructureReport& report) {
+bool filtered_out(const RawAtom& a, const StructureOptions& options, bool pqr,
+                  std::map<std::string, char>& kept_altloc, StructureReport& report) {
   if (a.altloc != 0 && a.altloc != ' ' && kept_altloc[a.residue_key] != a.altloc) {
     ++report.alternate_locations_removed;
     return true;
@@ -313,7 +313,7 @@ bool filtered_out(const RawAtom& a, const StructureOptions& options, std::map<st
     ++report.other_chains_removed;
     return true;
   }
-  if (a.hydrogen && !options.keep_hydrogens) {
+  if (a.hydrogen && !options.keep_hydrogens.value_or(pqr)) {
     ++report.hydrogens_removed;
     return true;
   }
@@ -383,7 +383,7 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
   auto kept_altloc = kept_alternate_locations(raw);
   ElementRadii radii(options);
   for (auto& a : raw) {
-    if (filtered_out(a, options, kept_altloc, report)) continue;
+    if (filtered_out(a, options, pqr, kept_altloc, report)) continue;
     require_real_position(a, path);
     if (!pqr) a.atom.radius = radii.radius(a.atom);
     molecule.atoms.push_back(std::move(a.atom));
@@ -395,6 +395,11 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
                                  "--keep-hydrogens{})",
                                  path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
                                  options.keep_hetero ? "" : ", without --no-hetero"));
+  const auto solid = std::count_if(molecule.atoms.begin(), molecule.atoms.end(), [](const Atom& a) { return a.radius > 0; });
+  if (solid < 2)
+    throw InputError(fmt::format("{}: {} atom(s) of positive radius; a molecular surface needs at least two (atoms of "
+                                 "radius 0 carry charge only)",
+                                 path.string(), solid));
   return molecule;
 }
 

@@ -70,7 +70,7 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
       {"structure",
        {{"model", job.structure.model},
         {"chains", job.structure.chains},
-        {"keep_hydrogens", job.structure.keep_hydrogens},
+        {"keep_hydrogens", job.structure.keep_hydrogens ? Json(*job.structure.keep_hydrogens) : Json(nullptr)},
         {"keep_waters", job.structure.keep_waters},
         {"keep_hetero", job.structure.keep_hetero},
         {"radii", radii}}},

@@ -34,11 +34,42 @@ bool is_structure_file(const std::filesystem::path& path) {
          extension == ".pqr";
 }
 
+namespace {
+
+// The atoms that make the surface: those of positive radius. Atoms of radius 0 (a PQR's hydrogens) carry
+// charge but make no surface; `index` maps the solid atoms back to the structure's (empty when every atom
+// is solid, and `atoms` is the structure's list itself).
+struct SolidAtoms {
+  std::vector<Atom> list;
+  std::vector<std::int32_t> index;
+};
+
+SolidAtoms solid_atoms(const std::vector<Atom>& atoms) {
+  SolidAtoms solid;
+  if (std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.radius > 0; })) return solid;
+  for (std::size_t a = 0; a < atoms.size(); ++a) {
+    if (!(atoms[a].radius > 0)) continue;
+    solid.list.push_back(atoms[a]);
+    solid.index.push_back(static_cast<std::int32_t>(a));
+  }
+  return solid;
+}
+
+// `atomid` from indices into the solid atoms to indices into the structure's.
+void restore_atom_ids(Mesh& mesh, const SolidAtoms& solid) {
+  if (solid.index.empty()) return;
+  for (auto& id : mesh.integer_attributes.at(attributes::kAtomId)) id = solid.index[static_cast<std::size_t>(id)];
+}
+
+}  // namespace
+
 Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions& structure,
                        const SurfaceOptions& surface, StructureReport* report) {
   const Molecule molecule = read_structure(path, structure);
   if (report) *report = molecule.report;
-  Mesh mesh = solvent_excluded_surface(molecule.atoms, surface);
+  const SolidAtoms solid = solid_atoms(molecule.atoms);
+  Mesh mesh = solvent_excluded_surface(solid.index.empty() ? molecule.atoms : solid.list, surface);
+  restore_atom_ids(mesh, solid);
   add_atom_provenance(mesh, molecule.atoms);
   return mesh;
 }
@@ -139,8 +170,10 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
 
 }  // namespace
 
-MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
-                                  HandleRepairReport* repair, bool full_provenance) {
+MolecularSurface repaired_surface(const std::vector<Atom>& structure_atoms, const SurfaceOptions& surface,
+                                  bool keep_topology, HandleRepairReport* repair, bool full_provenance) {
+  const SolidAtoms solid = solid_atoms(structure_atoms);
+  const std::vector<Atom>& atoms = solid.index.empty() ? structure_atoms : solid.list;
   MolecularSurface result;
   HandleRepairReport local;
   HandleRepairReport& report = repair ? *repair : local;
@@ -184,12 +217,13 @@ MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceO
     }
   }
   add_nearest_atoms(mesh, atoms, surface);
-  if (full_provenance) add_atom_provenance(mesh, atoms);
-  result.atoms = atoms;
+  restore_atom_ids(mesh, solid);
+  if (full_provenance) add_atom_provenance(mesh, structure_atoms);
+  result.atoms = structure_atoms;
   timer.lap("provenance");
   result.mesh = std::move(mesh);
   result.components = final_components ? std::move(*final_components) : mesh_components(result.mesh);
-  result.reports = describe_components(result.mesh, result.components, atoms);
+  result.reports = describe_components(result.mesh, result.components, structure_atoms);
   report.area_after = result.components.empty() ? 0 : result.components.front().area;
   if (report.method == RepairMethod::kNone) report.area_before = report.area_after;
   timer.lap("components");

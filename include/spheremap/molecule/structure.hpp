@@ -38,7 +38,9 @@ struct StructureOptions {
   int model = 1;
   /// Chains to keep (by name); empty = all.
   std::vector<std::string> chains;
-  bool keep_hydrogens = false;
+  /// Hydrogens: unset, PDB and mmCIF files lose them and PQR files keep them (a PQR's hydrogens carry
+  /// charge; those of radius 0 make no surface); true or false applies to every format.
+  std::optional<bool> keep_hydrogens;
   bool keep_waters = false;
   bool keep_hetero = true;  // ligands, ions and other HETATM groups that are not water
   /// Element -> radius (Å) replacing the Bondi table, e.g. from load_radius_table. Ignored for PQR files,
@@ -64,8 +66,8 @@ struct Molecule {
 
 /// Reads PDB, mmCIF (both optionally .gz) through gemmi (B-factors too), or PQR (radius and charge columns), chosen by
 /// extension (.pdb .ent .cif .mmcif .pqr, with an optional .gz). Keeps, by default, the first model,
-/// the most occupied alternate location of each residue (ties: the first letter), no hydrogens, no
-/// waters, all other HETATM groups and all chains; radii from Bondi (1964) per element unless
+/// the most occupied alternate location of each residue (ties: the first letter), no hydrogens (but a
+/// PQR's, whose atoms of radius 0 count for charge and make no surface), no waters, all other HETATM groups and all chains; radii from Bondi (1964) per element unless
 /// options.radii or the PQR file say otherwise; unknown elements get kUnknownElementRadius and a
 /// warning naming them.
 /// Throws InputError naming the file, the problem and the fix when the file is missing, unreadable,

@@ -72,7 +72,7 @@ struct SurfaceComponentReport {
 /// A molecular surface with its components analysed.
 struct MolecularSurface {
   Mesh mesh;  // every component, with atom provenance
-  std::vector<Atom> atoms;  // the atoms it was made of (what `atomid` indexes)
+  std::vector<Atom> atoms;  // the structure's atoms (what `atomid` indexes); those of radius 0 made no surface
   std::vector<MeshComponent> components;          // largest area first
   std::vector<SurfaceComponentReport> reports;    // same order
   std::vector<StageTime> timings;                 // wall-clock seconds of its stages ("field", "contour", ...)
@@ -83,18 +83,19 @@ struct MolecularSurface {
 bool is_structure_file(const std::filesystem::path& path);
 
 /// The solvent-excluded surface of a structure file, every component, with atom provenance attributes
-/// (no handle repair: see repaired_surface). Fills `report` when given.
+/// (no handle repair: see repaired_surface); atoms of radius 0 make no surface. Fills `report` when given.
 /// Throws InputError as read_structure and solvent_excluded_field do.
 Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions& structure,
                        const SurfaceOptions& surface, StructureReport* report = nullptr);
 
 /// Atoms to their SES with full atom provenance (add_atom_provenance), the outer surface (largest
-/// component) repaired to genus 0 by repair_outer_genus unless keep_topology; components analysed.
+/// component) repaired to genus 0 by repair_outer_genus unless keep_topology; components analysed. Atoms of
+/// radius 0 (a PQR's hydrogens) make no surface: `atomid` indexes `atoms` all the same.
 /// What the repair did goes to `*repair` when given.
 /// With full_provenance false, vertices get only the integer attributes of add_nearest_atoms (`atomid`
 /// and the others): the text ones cost time and memory on millions of vertices, and a caller that
 /// simplifies the surface first adds them to what it keeps (add_atom_provenance).
-/// Preconditions: atoms non-empty with positive radii (as read_structure gives them).
+/// Preconditions: atoms non-empty, radii >= 0, at least one positive (as read_structure gives them).
 /// Throws InputError as solvent_excluded_field does (e.g. a grid too large for the memory budget).
 MolecularSurface repaired_surface(const std::vector<Atom>& atoms, const SurfaceOptions& surface, bool keep_topology,
                                   HandleRepairReport* repair, bool full_provenance = true);
