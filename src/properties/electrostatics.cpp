@@ -43,6 +43,8 @@ ChargeAssignment assign_charges(const std::vector<Atom>& atoms, const std::files
       return charges;
     }
     case ChargeChoice::kPdb2pqr: return pdb2pqr_charges(atoms, options.force_field, name, progress);
+    case ChargeChoice::kInputOrFormal:
+      return is_pqr(structure_file) ? read_pqr_charges(atoms, structure_file) : formal_charges(atoms);
     case ChargeChoice::kAuto: break;
   }
   if (is_pqr(structure_file)) return read_pqr_charges(atoms, structure_file);

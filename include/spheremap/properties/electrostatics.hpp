@@ -28,6 +28,7 @@ enum class ChargeChoice {
   kPdb2pqr,  // pdb2pqr, or an error naming the package when it is not installed
   kFormal,   // the built-in table (formal_charges)
   kFile,     // the PQR file `charges_file`, matched by chain, residue and atom name
+  kInputOrFormal,  // a PQR input's own charges, else the formal table: no external program (the map's default)
 };
 
 struct ElectrostaticsOptions {
