@@ -395,11 +395,6 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
                                  "--keep-hydrogens{})",
                                  path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
                                  options.keep_hetero ? "" : ", without --no-hetero"));
-  const auto solid = std::count_if(molecule.atoms.begin(), molecule.atoms.end(), [](const Atom& a) { return a.radius > 0; });
-  if (solid < 2)
-    throw InputError(fmt::format("{}: {} atom(s) of positive radius; a molecular surface needs at least two (atoms of "
-                                 "radius 0 carry charge only)",
-                                 path.string(), solid));
   return molecule;
 }
 

@@ -12,6 +12,7 @@
 
 #include "detail.hpp"
 #include "spheremap/attributes.hpp"
+#include "spheremap/error.hpp"
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/repair/handle_repair.hpp"
 #include "spheremap/surface/nearest_atoms.hpp"
@@ -45,6 +46,10 @@ struct SolidAtoms {
 };
 
 SolidAtoms solid_atoms(const std::vector<Atom>& atoms) {
+  if (std::none_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.radius > 0; }))
+    throw InputError(fmt::format("none of the {} atom(s) has a positive radius: atoms of radius 0 carry charge but make "
+                                 "no surface",
+                                 atoms.size()));
   SolidAtoms solid;
   if (std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.radius > 0; })) return solid;
   for (std::size_t a = 0; a < atoms.size(); ++a) {
@@ -67,7 +72,12 @@ Mesh molecular_surface(const std::filesystem::path& path, const StructureOptions
                        const SurfaceOptions& surface, StructureReport* report) {
   const Molecule molecule = read_structure(path, structure);
   if (report) *report = molecule.report;
-  const SolidAtoms solid = solid_atoms(molecule.atoms);
+  SolidAtoms solid;
+  try {
+    solid = solid_atoms(molecule.atoms);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", path.string(), e.what()));
+  }
   Mesh mesh = solvent_excluded_surface(solid.index.empty() ? molecule.atoms : solid.list, surface);
   restore_atom_ids(mesh, solid);
   add_atom_provenance(mesh, molecule.atoms);

@@ -90,7 +90,13 @@ TEST_F(Structure, ReadsPqrWithAndWithoutChains) {
                           "ATOM      2  HZ1 LYS A   1      -9.000   5.000   8.000  0.3400 0.6000\n"
                           "ATOM      3  CA  LYS    52A     -8.000   6.000   8.000  0.1000 1.9080\n"
                           "HETATM    4 ZN   ZN     90      -7.000   6.000   7.000  2.0000 1.3900\n");
-  const auto molecule = read_structure(path);
+  // A PQR's hydrogens are kept by default (they carry charge); --no-hydrogens leaves them out.
+  const auto with_hydrogens = read_structure(path);
+  ASSERT_EQ(with_hydrogens.atoms.size(), 4u);
+  EXPECT_EQ(with_hydrogens.atoms[1].name, "HZ1");
+  StructureOptions no_hydrogens;
+  no_hydrogens.keep_hydrogens = false;
+  const auto molecule = read_structure(path, no_hydrogens);
   ASSERT_EQ(molecule.atoms.size(), 3u);
   ASSERT_TRUE(molecule.atoms[0].charge.has_value());
   EXPECT_EQ(*molecule.atoms[0].charge, 0.0966);  // the decimal as written, to the last bit
