@@ -69,7 +69,9 @@ struct GenerateCommand {
                                        : make_subdivided_cube(cube_n);
     if (flips > 0) mesh = random_edge_flips(mesh, flips, seed);
     if (perturb > 0) mesh = perturb_vertices(mesh, perturb, seed);
-    write_ply(output, mesh, PlyWriteOptions{ascii});
+    PlyWriteOptions ply;
+    ply.ascii = ascii;
+    write_ply(output, mesh, ply);
     if (!quiet)
       std::cout << fmt::format("{}: {} vertices, {} triangles\n", output, mesh.vertex_count(), mesh.triangle_count());
     return 0;

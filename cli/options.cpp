@@ -2,6 +2,8 @@
 #include "options.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <iostream>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -128,10 +130,12 @@ void MapCliOptions::add(CLI::App* command, WeightingCount count) {
   command->add_flag("--no-repair", no_repair,
                     "The paper's algorithm only: no re-weighting, no untangling (the certificate still runs)");
   structure.add(command, job);
+  properties.add(command, job);
 }
 
 void MapCliOptions::apply() {
   structure.apply(job);
+  properties.apply(job);
   job.map.weights = weightings().front();
   job.map.solver = solver == "gauss-seidel" ? Solver::kGaussSeidel : Solver::kDirect;
   if (!component.empty()) job.prepare.component = parse_component(component);
@@ -175,6 +179,90 @@ void add_output_option(CLI::App* command, std::string& output, const std::string
 
 void add_quiet_flag(CLI::App* command, bool& quiet, const std::string& description) {
   command->add_flag("-q,--quiet", quiet, description);
+}
+
+}  // namespace spheremap::cli
+
+namespace spheremap::cli {
+
+void PropertyCliOptions::add(CLI::App* command, MapJobOptions& job) {
+  auto& e = job.properties.electrostatics;
+  command->add_option("--properties", properties,
+                      "Surface properties to compute, comma-separated (default: all that apply; 'none': none); "
+                      "see docs/properties.md");
+  command->add_option("--color", job.colour,
+                      "Property the PLY files' vertex colours show (default: electrostatics, else hydrophobicity, "
+                      "else octant)");
+  command->add_option("--values", values,
+                      "CSV/TSV of per-residue or per-atom values (columns chain, residue_number, optional "
+                      "insertion_code and atom_name, then value columns: one property each); repeatable")
+      ->check(CLI::ExistingFile);
+  command->add_option("--charges", charges,
+                      "Charges of the Coulomb potential: formal (built-in table), pdb2pqr, or a PQR file (default: a "
+                      "PQR input's own, else formal)");
+  command->add_option("--potential-map", potential_map, "Electrostatics from an APBS OpenDX map (.dx), kT/e")
+      ->check(CLI::ExistingFile);
+  command->add_flag("--apbs", apbs, "Electrostatics by APBS (Poisson-Boltzmann; runs pdb2pqr and apbs)");
+  command->add_option("--temperature", e.temperature, "Temperature in K of kT/e (default 298.15)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--dielectric", dielectric,
+                      "Coulomb dielectric: '4r' (distance-dependent, default) or a constant such as 80");
+  command->add_option("--potential-offset", e.offset,
+                      "Å: the potential is taken this far out along each vertex normal (default 1.4)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--force-field", force_field, "pdb2pqr's force field: amber (default) or parse")
+      ->check(CLI::IsMember({"amber", "parse"}));
+}
+
+void PropertyCliOptions::apply(MapJobOptions& job) const {
+  auto& options = job.properties;
+  auto& e = options.electrostatics;
+  if (!properties.empty()) {
+    std::vector<std::string> names;
+    std::stringstream list(properties);
+    for (std::string name; std::getline(list, name, ',');)
+      if (!name.empty() && name != "none") names.push_back(name);
+    options.only = names;
+  }
+  for (const auto& file : values) options.values_files.emplace_back(file);
+  if (apbs && !potential_map.empty()) throw InputError("--apbs and --potential-map: give one source of the potential");
+  if (apbs) e.method = ElectrostaticsMethod::kApbs;
+  if (!potential_map.empty()) {
+    e.method = ElectrostaticsMethod::kPotentialMap;
+    e.potential_map = potential_map;
+  }
+  if (!charges.empty() && e.method != ElectrostaticsMethod::kCoulomb)
+    throw InputError("--charges is for the built-in Coulomb potential, not with --apbs or --potential-map");
+  if (charges == "formal") {
+    e.charges = ChargeChoice::kFormal;
+  } else if (charges == "pdb2pqr") {
+    e.charges = ChargeChoice::kPdb2pqr;
+  } else if (charges == "auto") {
+    e.charges = ChargeChoice::kAuto;
+  } else if (!charges.empty()) {
+    if (!std::filesystem::is_regular_file(charges))
+      throw InputError(fmt::format("--charges {}: expected formal, pdb2pqr, auto or an existing PQR file", charges));
+    e.charges = ChargeChoice::kFile;
+    e.charges_file = charges;
+  }
+  e.force_field = force_field == "parse" ? ForceField::kParse : ForceField::kAmber;
+  if (!dielectric.empty()) {
+    const bool distance = dielectric.back() == 'r';
+    const std::string number = distance ? dielectric.substr(0, dielectric.size() - 1) : dielectric;
+    std::size_t used = 0;
+    double value = 0;
+    try {
+      value = std::stod(number, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != number.size() || !(value > 0))
+      throw InputError(fmt::format("--dielectric '{}': expected a positive number, with 'r' for ε = κr (e.g. 4r, 80)",
+                                   dielectric));
+    e.coulomb.dielectric = distance ? Dielectric::kDistanceDependent : Dielectric::kConstant;
+    e.coulomb.dielectric_value = value;
+  }
+  options.progress = [](const std::string& line) { std::cerr << "  " << line << std::endl; };
 }
 
 }  // namespace spheremap::cli

@@ -35,11 +35,23 @@ enum class WeightingCount { kOne, kSeveral };
 /// The options of a map job, shared by map and batch: --weights, --solver, --component,
 /// --weld-tolerance, --collapse-floor, --ascii, --equalizing-rounds, --no-repair and the structure
 /// options. Call add() before parsing and apply() after.
+/// The surface properties' options (map and batch): --properties, --color, --values, and the electrostatics'
+/// --charges, --potential-map, --apbs, --temperature, --dielectric, --potential-offset, --force-field.
+struct PropertyCliOptions {
+  std::string properties, charges, potential_map, dielectric, force_field = "amber";
+  bool apbs = false;
+  std::vector<std::string> values;
+  void add(CLI::App* command, MapJobOptions& job);
+  /// Fills job.properties. Throws InputError for a bad --dielectric, --charges or option combination.
+  void apply(MapJobOptions& job) const;
+};
+
 struct MapCliOptions {
   MapJobOptions job;
   std::string weights = "uniform", solver = "direct", component;
   bool no_repair = false;
   StructureCliOptions structure;
+  PropertyCliOptions properties;
   void add(CLI::App* command, WeightingCount count);
   /// Fills `job` (with the first weighting of weightings()). Throws InputError for a bad --weights or
   /// --component, or an unreadable radius table.

@@ -82,7 +82,9 @@ struct SurfaceCommand {
     SimplifyReport simplification;
     if (options.simplify.target_edge_length > 0)
       result.mesh = simplify_surface(std::move(result.mesh), options.simplify, &simplification);
-    write_ply(output, result.mesh, PlyWriteOptions{options.ascii});
+    PlyWriteOptions ply;
+    ply.ascii = options.ascii;
+    write_ply(output, result.mesh, ply);
     if (!quiet) print_surface(output, options, result, repair, simplification, molecule.report);
     return 0;
   }

@@ -21,5 +21,13 @@ inline constexpr const char* kCharge = "vertex_charge";                 // real:
 inline constexpr const char* kTheta = "theta";  // real: polar angle from the north pole, in [0, π]
 inline constexpr const char* kPhi = "phi";      // real: azimuth, in [0, 2π)
 inline constexpr const char* kInputVertex = "input_vertex";  // integer: the vertex's index in the input file
+inline constexpr const char* kNormalX = "nx";  // float: the surface's unit vertex normal (on both PLY files)
+inline constexpr const char* kNormalY = "ny";
+inline constexpr const char* kNormalZ = "nz";
+inline constexpr const char* kRed = "red";  // uchar: the colour of the --color property (both PLY files)
+inline constexpr const char* kGreen = "green";
+inline constexpr const char* kBlue = "blue";
+// Surface properties (properties/registry.hpp): float `vertex_<name>`, e.g. vertex_electrostatics.
+inline constexpr const char* kPropertyPrefix = "vertex_";
 
 }  // namespace spheremap::attributes

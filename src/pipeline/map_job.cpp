@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "detail.hpp"
 #include "spheremap/attributes.hpp"
@@ -13,7 +14,10 @@
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/io/ply.hpp"
+#include "spheremap/pipeline/map_tables.hpp"
 #include "spheremap/pipeline/report.hpp"
+#include "spheremap/geometry/normals.hpp"
+#include "spheremap/properties/colour_scale.hpp"
 #include "spheremap/surface/provenance.hpp"
 #include "../util/stage_timer.hpp"
 
@@ -45,12 +49,29 @@ MapOptions map_options_for(const PreparedMesh& prepared, const MapJobOptions& op
   return map;
 }
 
-// The part of a job after preparation: the map and its measurements.
+// The properties that need no map (structure and shape), on the prepared mesh.
+void compute_surface_properties(MapJobResult& result, const MapJobOptions& options) {
+  PropertyInputs inputs;
+  inputs.surface = &result.prepared.mesh;
+  if (result.from_structure) inputs.atoms = &result.structure_atoms;
+  inputs.structure_file = result.input;
+  PropertySet set = compute_properties(inputs, options.properties);
+  result.properties = std::move(set.properties);
+  result.property_report = std::move(set.report);
+}
+
+// The part of a job after preparation: the map, its measurements and the map properties.
 void map_and_measure(MapJobResult& result, const MapJobOptions& options, const std::string& name) {
   result.map = map_to_sphere(result.prepared.mesh, map_options_for(result.prepared, options, name));
   detail::StageTimer timer("map job");
   result.metrics = measure_distortion(result.prepared.mesh, result.map.sphere);
   result.metrics_seconds = timer.lap("metrics");
+  PropertySet set{std::move(result.properties), std::move(result.property_report)};
+  add_map_properties(set, result.prepared.mesh, result.map.sphere, options.properties);
+  result.properties = std::move(set.properties);
+  result.property_report = std::move(set.report);
+  result.properties_seconds = 0;
+  for (const auto& t : result.property_report.timings) result.properties_seconds += t.seconds;
 }
 
 // A structure file to its analysed molecular surface; fills the structure parts of `result`.
@@ -72,6 +93,7 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
   result.surface_seconds = timer.lap("surface");
   result.surface_timings = surface.timings;
   result.components = surface.reports;
+  result.structure_atoms = surface.atoms;
   if (surface.components.empty())
     throw MeshRefused(fmt::format("{}: the molecular surface is empty", input.string()));
   return fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(), options.surface.probe,
@@ -191,6 +213,7 @@ std::vector<MapJobResult> run_map_job_components(const std::filesystem::path& in
     if (surface.components[c].genus != 0) continue;  // reported in the components list, never mapped
     MapJobResult result = base;
     const std::string component_name = prepare_surface_component(surface, c, name, options, result, false);
+    compute_surface_properties(result, options);
     map_and_measure(result, options, component_name);
     results.push_back(std::move(result));
   }
@@ -200,6 +223,7 @@ std::vector<MapJobResult> run_map_job_components(const std::filesystem::path& in
 MapJobResult run_map_job(const std::filesystem::path& input, const MapJobOptions& options) {
   MapJobResult result;
   const std::string name = load_and_prepare(input, options, result);
+  compute_surface_properties(result, options);
   map_and_measure(result, options, name);
   return result;
 }
@@ -209,6 +233,7 @@ std::vector<MapJobResult> run_map_jobs(const std::filesystem::path& input, const
   if (weights.empty()) throw std::invalid_argument("run_map_jobs: no weights");
   MapJobResult loaded;
   const std::string name = load_and_prepare(input, options, loaded);
+  compute_surface_properties(loaded, options);
   std::vector<MapJobResult> results;
   results.reserve(weights.size());
   for (std::size_t k = 0; k < weights.size(); ++k) {
@@ -230,6 +255,7 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
   result.prepared = prepare_mesh(mesh, named.prepare);
   result.prepare_seconds = timer.lap("prepare");
   if (options.simplify_mesh_files) simplify_prepared_mesh(result, named, name);
+  compute_surface_properties(result, options);
   map_and_measure(result, options, name);
   return result;
 }
@@ -257,6 +283,19 @@ std::string structure_text(const MapJobResult& result) {
   return text;
 }
 
+// The properties' line: their names, where the potential came from, and their warnings.
+std::string properties_text(const MapJobResult& result) {
+  if (result.properties.empty()) return {};
+  std::vector<std::string> names;
+  for (const auto& p : result.properties) {
+    names.push_back(p.info.name);
+    if (p.info.name == property_names::kElectrostatics) names.back() += " (" + p.source + ")";
+  }
+  std::string text = fmt::format("  properties: {}\n", fmt::join(names, ", "));
+  for (const auto& warning : result.property_report.warnings) text += fmt::format("  warning: {}\n", warning);
+  return text;
+}
+
 std::string simplification_text(const SimplifyReport& r) {
   return fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g}, smallest angle {:.1f}° -> "
                      "{:.1f}°), area {:+.2f}%, every removed vertex within {:.3g} of the result\n",
@@ -274,6 +313,7 @@ std::string summary_text(const MapJobResult& result) {
   double total_seconds = result.read_seconds + result.surface_seconds + result.simplify_seconds +
                          result.prepare_seconds + result.metrics_seconds;
   for (const auto& t : map.diagnostics.timings) total_seconds += t.seconds;
+  total_seconds += result.properties_seconds;
   std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
                                  result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
   if (result.from_structure) text += structure_text(result);
@@ -302,27 +342,85 @@ std::string summary_text(const MapJobResult& result) {
                       "dilatation {:.2f} mean, octant RMS {:.1f}%\n",
                       m.area_distortion_mean_percent, m.area_distortion_max_percent, m.angle_distortion_mean_degrees,
                       m.angle_distortion_rms_degrees, m.dilatation_mean, m.octant_rms_deviation_percent);
+  text += properties_text(result);
   text += fmt::format("  superposition RMSD {:.4g}; total {:.3f} s\n", map.superposition.rmsd, total_seconds);
   return text;
 }
 
+namespace {
+
+// Atom provenance that atoms.csv carries instead of the PLY (text), or that a property replaces
+// (vertex_residue_number, vertex_b_factor, vertex_charge become float properties).
+void drop_provenance(Mesh& mesh) {
+  mesh.text_attributes.clear();
+  for (const char* name : {attributes::kAtomSerial, attributes::kResidueNumber, attributes::kModel})
+    mesh.integer_attributes.erase(name);
+  for (const char* name : {attributes::kBFactor, attributes::kCharge}) mesh.real_attributes.erase(name);
+}
+
+// Properties (float), normals (float) and colours (uchar) of the two PLY files; `ply` learns their types.
+void add_property_attributes(Mesh& surface, const MapJobResult& result, const MapJobOptions& options,
+                             PlyWriteOptions& ply) {
+  // A mesh file's own attributes of these names give way (the map's are written instead).
+  for (const char* name : {attributes::kNormalX, attributes::kNormalY, attributes::kNormalZ, attributes::kRed,
+                           attributes::kGreen, attributes::kBlue}) {
+    surface.real_attributes.erase(name);
+    surface.integer_attributes.erase(name);
+    surface.text_attributes.erase(name);
+  }
+  for (const auto& p : result.properties) {
+    const std::string name = attributes::kPropertyPrefix + p.info.name;
+    surface.real_attributes[name] = p.values;
+    ply.float_attributes.insert(name);
+  }
+  const std::vector<Vec3> normals = vertex_normals(surface.positions, surface.triangles);
+  const char* axes[] = {attributes::kNormalX, attributes::kNormalY, attributes::kNormalZ};
+  for (int k = 0; k < 3; ++k) {
+    auto& values = surface.real_attributes[axes[k]];
+    values.resize(normals.size());
+    for (std::size_t v = 0; v < normals.size(); ++v) values[v] = normals[v][static_cast<std::size_t>(k)];
+    ply.float_attributes.insert(axes[k]);
+  }
+  const SurfaceProperty* shown = colour_property(result.properties, options.colour);
+  if (shown == nullptr) return;
+  const ValueRange range = colour_range(*shown);
+  const char* channels[] = {attributes::kRed, attributes::kGreen, attributes::kBlue};
+  for (const char* channel : channels) surface.integer_attributes[channel].resize(surface.vertex_count());
+  for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
+    const Rgb8 c = colour_of(shown->info.scale, range, shown->values[v]);
+    surface.integer_attributes[attributes::kRed][v] = c.r;
+    surface.integer_attributes[attributes::kGreen][v] = c.g;
+    surface.integer_attributes[attributes::kBlue][v] = c.b;
+  }
+  for (const char* channel : channels) ply.uchar_attributes.insert(channel);
+}
+
+}  // namespace
+
 void write_map_outputs(const std::filesystem::path& directory, const MapJobResult& result,
                        const MapJobOptions& options) {
+  // Everything that can fail on the user's input (--color) fails before the folder is touched.
+  PlyWriteOptions ply;
+  ply.ascii = options.ascii;
+  Mesh surface = result.prepared.mesh;
+  if (result.from_structure) drop_provenance(surface);
+  surface.real_attributes[attributes::kTheta] = result.map.theta;
+  surface.real_attributes[attributes::kPhi] = result.map.phi;
+  surface.integer_attributes[attributes::kInputVertex] = result.prepared.report.original_vertex;
+  add_property_attributes(surface, result, options, ply);
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error)
     throw InputError(fmt::format("{}: cannot create the output folder: {}", directory.string(), error.message()));
-  Mesh surface = result.prepared.mesh;
-  surface.real_attributes[attributes::kTheta] = result.map.theta;
-  surface.real_attributes[attributes::kPhi] = result.map.phi;
-  surface.integer_attributes[attributes::kInputVertex] = result.prepared.report.original_vertex;
   Mesh sphere = surface;
   sphere.positions = result.map.sphere;
-  const PlyWriteOptions ply{options.ascii};
   write_ply(directory / kSurfaceFile, surface, ply);
   write_ply(directory / kSphereFile, sphere, ply);
+  if (result.from_structure) {
+    write_file_atomically(directory / kAtomsFile, atoms_csv(result));
+    write_file_atomically(directory / kResiduesFile, residues_csv(result));
+  }
   write_file_atomically(directory / kReportFile, make_report(result, options).dump(2) + "\n");
 }
-
 
 }  // namespace spheremap

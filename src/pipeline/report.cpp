@@ -97,7 +97,82 @@ nlohmann::json timings_json(const MapJobResult& result) {
   timings["prepare"] = result.prepare_seconds;
   for (const auto& t : result.map.diagnostics.timings) timings[t.stage] = t.seconds;
   timings["metrics"] = result.metrics_seconds;
+  timings["properties"] = result.properties_seconds;
+  nlohmann::json parts = nlohmann::json::object();
+  for (const auto& t : result.property_report.timings) parts[t.stage] = t.seconds;
+  timings["property_stages"] = parts;
   return timings;
+}
+
+std::string method_name(ElectrostaticsMethod method) {
+  switch (method) {
+    case ElectrostaticsMethod::kCoulomb: return "coulomb";
+    case ElectrostaticsMethod::kPotentialMap: return "potential_map";
+    case ElectrostaticsMethod::kApbs: return "apbs";
+  }
+  return "coulomb";
+}
+
+nlohmann::json electrostatics_json(const ElectrostaticsDetails& e, const std::vector<std::string>& warnings) {
+  nlohmann::json block = {{"method", method_name(e.method)},
+                          {"charges", e.charges.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.charges)},
+                          {"force_field", e.force_field ? nlohmann::json(to_string(*e.force_field)) : nullptr},
+                          {"temperature", e.temperature},
+                          {"offset", e.offset},
+                          {"dielectric", e.dielectric.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.dielectric)},
+                          {"potential_map", e.potential_map.empty() ? nlohmann::json(nullptr)
+                                                                    : nlohmann::json(e.potential_map.string())},
+                          {"net_charge", e.net_charge ? nlohmann::json(*e.net_charge) : nullptr},
+                          {"atoms_charged", e.atoms_charged},
+                          {"atoms_unmatched", e.atoms_unmatched},
+                          {"added_atoms", e.added_atoms},
+                          {"added_hydrogens", e.added_hydrogens}};
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& w : warnings)
+    if (w.rfind("electrostatics: ", 0) == 0) list.push_back(w.substr(16));
+  block["warnings"] = list;
+  return block;
+}
+
+// `properties`: name -> what a reader needs to show or compare it (docs/report.md).
+nlohmann::json properties_json(const MapJobResult& result) {
+  nlohmann::json block = nlohmann::json::object();
+  const PropertyReport& report = result.property_report;
+  for (const SurfaceProperty& p : result.properties) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0;
+    std::int64_t finite = 0, missing = 0;
+    for (const double v : p.values) {
+      if (!std::isfinite(v)) {
+        ++missing;
+        continue;
+      }
+      lo = std::min(lo, v), hi = std::max(hi, v), sum += v, ++finite;
+    }
+    nlohmann::json range = nullptr;
+    if (finite > 0) range = {{"min", lo}, {"max", hi}, {"mean", sum / static_cast<double>(finite)}};
+    nlohmann::json entry = {{"source", p.source},
+                            {"unit", p.info.unit},
+                            {"scale", std::string(to_string(p.info.scale))},
+                            {"default_range", p.info.default_range ? nlohmann::json{p.info.default_range->lo,
+                                                                                   p.info.default_range->hi}
+                                                                   : nlohmann::json(nullptr)},
+                            {"range", range},
+                            {"missing", missing}};
+    if (!p.info.categories.empty()) entry["categories"] = p.info.categories;
+    if (p.info.name == property_names::kElectrostatics && report.electrostatics)
+      entry["electrostatics"] = electrostatics_json(*report.electrostatics, report.warnings);
+    if (p.info.name == property_names::kHydrophobicity)
+      entry["unknown_residues"] = {{"count", report.unknown_residues.residues},
+                                   {"names", report.unknown_residues.names}};
+    for (const AtomValues& column : report.values)
+      if (column.name == p.info.name)
+        entry["values_file"] = {{"rows", column.rows},
+                                {"rows_unmatched", column.rows_unmatched},
+                                {"atoms_without_value", column.atoms_without_value},
+                                {"unmatched_examples", column.unmatched_examples}};
+    block[p.info.name] = entry;
+  }
+  return block;
 }
 
 nlohmann::json options_json(const MapJobResult& result, const MapJobOptions& options) {
@@ -242,6 +317,7 @@ nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& opti
       {"certificate", certificate_json(result.map.certificate)},
       {"plain_algorithm_certificate", certificate_json(result.map.diagnostics.repair.plain_certificate)},
       {"distortion", distortion_json(result.metrics)},
+      {"properties", properties_json(result)},
       {"timings_seconds", timings_json(result)},
   };
 }
@@ -419,6 +495,13 @@ ReportSummary read_report(const nlohmann::json& report, const std::filesystem::p
   if (!f.is_null({"structure"})) r.structure = read_structure_part(f);
   if (!f.is_null({"simplification"})) r.simplification = read_simplification(f);
   read_map_part(f, r);
+  // `properties` (reports of spheremap before 0.2 have none): the names, and the electrostatics' source.
+  if (report.contains("properties") && report["properties"].is_object()) {
+    for (const auto& [name, entry] : f.object({"properties"}).items()) {
+      r.properties.push_back(name);
+      if (name == "electrostatics") r.electrostatics_source = f.text({"properties", "electrostatics", "source"});
+    }
+  }
   for (const auto& [stage, seconds] : f.object({"timings_seconds"}).items())
     if (seconds.is_number()) r.timings.push_back({stage, seconds.get<double>()});
   return r;

@@ -98,6 +98,9 @@ void set_report_columns(Json& row, const ReportSummary& r) {
   set_certificate_columns(row, "plain_", r.plain_certificate);
   set_distortion_columns(row, r.distortion);
   set_timing_columns(row, r.timings);
+  std::string names;
+  for (const auto& name : r.properties) names += (names.empty() ? "" : ";") + name;
+  put(row, {{"properties", names}, {"electrostatics_source", r.electrostatics_source}});
 }
 
 std::string csv_field(const Json& value) {
@@ -134,7 +137,7 @@ const std::vector<std::string>& summary_columns() {
     for (int k = 0; k < kOctants; ++k) c.push_back(fmt::format("octant_area_percent_{}", k));
     for (const char* column : {"octant_rms_deviation_percent", "split_edges", "seconds_read", "seconds_surface",
                                "seconds_simplify", "seconds_prepare", "seconds_map", "seconds_metrics",
-                               "seconds_total", "peak_rss_mb"})
+                               "seconds_total", "peak_rss_mb", "properties", "electrostatics_source"})
       c.emplace_back(column);
     return c;
   }();

@@ -361,12 +361,17 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   EXPECT_NE(map.output.find("327 atoms"), std::string::npos) << map.output;
   const auto header = slurp(folder_ / "crambin" / "sphere.ply").substr(0, 2000);
   using namespace attributes;
-  for (const char* name : {kAtomId, kAtomSerial, kResidueNumber, kModel})
-    EXPECT_NE(header.find(std::string("property int ") + name + "\n"), std::string::npos) << name;
-  for (const char* name : {kAtomName, kElement, kResidueName, kInsertionCode, kChain})
-    EXPECT_NE(header.find(std::string("property list uchar uchar ") + name + "\n"), std::string::npos) << name;
-  EXPECT_NE(header.find(std::string("property double ") + kBFactor + "\n"), std::string::npos);
+  // The PLY holds numbers only (atomid, float properties, normals, colours); the names are in atoms.csv.
+  EXPECT_NE(header.find(std::string("property int ") + kAtomId + "\n"), std::string::npos);
+  EXPECT_EQ(header.find("property list uchar uchar vertex_"), std::string::npos) << header;
+  for (const char* name : {kResidueNumber, kBFactor, "vertex_hydrophobicity", "vertex_electrostatics", "nx", "nz"})
+    EXPECT_NE(header.find(std::string("property float ") + name + "\n"), std::string::npos) << name;
+  for (const char* name : {"red", "green", "blue"})
+    EXPECT_NE(header.find(std::string("property uchar ") + name + "\n"), std::string::npos) << name;
   EXPECT_EQ(header.find(kCharge), std::string::npos);  // an mmCIF file has no partial charges
+  EXPECT_EQ(slurp(folder_ / "crambin" / "atoms.csv").rfind(
+                "atomid,serial,model,chain,residue_number,insertion_code,residue_name,atom_name,element,x,y,z,radius", 0),
+            0u);
   EXPECT_NE(slurp(folder_ / "crambin" / "report.json").find("\"probe\": 1.4"), std::string::npos);
 
   const auto surface = run_cli("surface " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn.ply").string() +

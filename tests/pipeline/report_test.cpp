@@ -75,7 +75,7 @@ TEST_F(Report, ReadsBackWhatMakeReportWrote) {
                              [](const StageTime& a, const StageTime& b) { return a.stage < b.stage; }));
   EXPECT_EQ(std::count_if(r.timings.begin(), r.timings.end(), [](const StageTime& t) { return t.stage == "read"; }),
             1);
-  EXPECT_EQ(r.timings.size(), diagnostics.timings.size() + 3);  // read, prepare, metrics
+  EXPECT_EQ(r.timings.size(), diagnostics.timings.size() + 4);  // read, prepare, metrics, properties
 }
 
 TEST_F(Report, ReadsTheStructurePartsAndCountsTheChangesByKind) {

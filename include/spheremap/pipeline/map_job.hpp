@@ -11,6 +11,7 @@
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/pipeline/molecular_surface.hpp"
 #include "spheremap/properties/property.hpp"
+#include "spheremap/properties/registry.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/surface/ses.hpp"
 #include "spheremap/topology/prepare.hpp"
@@ -39,6 +40,10 @@ struct MapJobOptions {
   /// as it is. For a mesh file, user-given poles are kept.
   SimplifyOptions simplify;
   bool simplify_mesh_files = false;
+  /// The surface properties (properties/registry.hpp): which, electrostatics, --values files.
+  PropertyOptions properties;
+  /// --color: the property the PLY's red green blue show (colour_property); empty: the default choice.
+  std::string colour;
 };
 
 struct MapJobResult {
@@ -59,6 +64,9 @@ struct MapJobResult {
   DistortionMetrics metrics;
   /// Per-vertex properties of prepared.mesh (electrostatics, hydrophobicity, ...), in the registry's order.
   std::vector<SurfaceProperty> properties;
+  PropertyReport property_report;     // how they were computed (electrostatics, --values counts, warnings)
+  std::vector<Atom> structure_atoms;  // a structure's atoms (what `atomid` indexes); empty for a mesh file
+  double properties_seconds = 0;      // the sum of property_report.timings
   double read_seconds = 0, prepare_seconds = 0, metrics_seconds = 0;
 };
 
@@ -94,12 +102,17 @@ std::string summary_text(const MapJobResult& result);
 inline constexpr const char* kSurfaceFile = "surface.ply";
 inline constexpr const char* kSphereFile = "sphere.ply";
 inline constexpr const char* kReportFile = "report.json";
+inline constexpr const char* kAtomsFile = "atoms.csv";        // structures: one row per atom, by `atomid`
+inline constexpr const char* kResiduesFile = "residues.csv";  // structures: one row per residue
 
-/// Writes `surface.ply`, `sphere.ply` and `report.json` (make_report) into `directory` (created if
-/// missing), each atomically, report.json last. Both PLY files have the same vertices in the same order
-/// and the same triangles, with per-vertex `theta`, `phi` and `input_vertex` (index in the input file)
-/// plus the input's attributes. Precondition: `result` and `options` are those of one run_map_job*.
-/// Throws InputError if a file cannot be written.
+/// Writes `surface.ply`, `sphere.ply`, for a structure `atoms.csv` and `residues.csv` (map_tables.hpp), and
+/// `report.json` (make_report) into `directory` (created if missing), each atomically, report.json last. Both
+/// PLY files have the same vertices in the same order and the same triangles, with per-vertex `theta`, `phi`
+/// (double), `input_vertex`, for a structure `atomid` (int), every property as float `vertex_<name>`, the
+/// vertex normal of the surface `nx ny nz` (float) and `red green blue` (uchar) of the colour property
+/// (options.colour, colour_property); text provenance (atom, residue, chain names) is in atoms.csv only.
+/// A mesh file's own vertex attributes are kept. Precondition: `result` and `options` are those of one
+/// run_map_job*. Throws InputError if a file cannot be written or options.colour names no property.
 void write_map_outputs(const std::filesystem::path& directory, const MapJobResult& result,
                        const MapJobOptions& options);
 

@@ -70,6 +70,8 @@ struct ReportSummary {
   ReportCertificate certificate;        // the final map
   ReportCertificate plain_certificate;  // the paper's algorithm alone
   DistortionMetrics distortion;         // of the final map
+  std::vector<std::string> properties;  // the keys of `properties`, in report order
+  std::string electrostatics_source;    // `properties.electrostatics.source`; empty without electrostatics
   /// `timings_seconds`: its numbers in key order, as make_report writes them (`surface_stages`, an
   /// object, left out).
   std::vector<StageTime> timings;
