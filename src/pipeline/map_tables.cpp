@@ -36,7 +36,7 @@ std::string atoms_csv(const MapJobResult& result) {
   std::string text =
       "atomid,serial,model,chain,residue_number,insertion_code,residue_name,atom_name,element,x,y,z,radius";
   for (const auto& c : columns)
-    if (!repeats_atom_column(c.name)) text += "," + csv_field(c.name);
+    if (!repeats_atom_column(c.name)) text.append(1, ',').append(csv_field(c.name));
   text += "\r\n";
   for (std::size_t a = 0; a < atoms.size(); ++a) {
     const Atom& atom = atoms[a];
@@ -45,7 +45,7 @@ std::string atoms_csv(const MapJobResult& result) {
                         csv_field(atom.name), csv_field(atom.element), csv_number(atom.position[0]),
                         csv_number(atom.position[1]), csv_number(atom.position[2]), csv_number(atom.radius));
     for (const auto& c : columns)
-      if (!repeats_atom_column(c.name)) text += "," + csv_number(c.values[a]);
+      if (!repeats_atom_column(c.name)) text.append(1, ',').append(csv_number(c.values[a]));
     text += "\r\n";
   }
   return text;
@@ -101,7 +101,7 @@ std::string residues_csv(const MapJobResult& result) {
   const ResidueAreas areas = residue_areas(result);
   std::string text = "chain,residue_number,insertion_code,residue_name,surface_area,sphere_area";
   for (const auto& p : result.properties)
-    if (averaged(p)) text += "," + csv_field("mean_" + p.info.name);
+    if (averaged(p)) text.append(1, ',').append(csv_field("mean_" + p.info.name));
   text += "\r\n";
   for (std::size_t r = 0; r < index.residues.size(); ++r) {
     const Residue& residue = index.residues[r];
@@ -109,7 +109,7 @@ std::string residues_csv(const MapJobResult& result) {
                         csv_field(insertion(residue.insertion_code)), csv_field(residue.name),
                         csv_number(areas.surface_area[r]), csv_number(areas.sphere_area[r]));
     for (std::size_t p = 0; p < result.properties.size(); ++p)
-      if (averaged(result.properties[p])) text += "," + csv_number(areas.means[p][r]);
+      if (averaged(result.properties[p])) text.append(1, ',').append(csv_number(areas.means[p][r]));
     text += "\r\n";
   }
   return text;
