@@ -87,6 +87,37 @@ TEST_F(Properties, PqrKeepsItsHydrogensChargesAndPotentialMap) {
   }
 }
 
+// The PyMOL script loads a map (Debian's pymol, headless): the surface overlays the structure, the sphere
+// stands beside it, the colour bar exists, and a ray-traced PNG is written.
+TEST_F(Properties, PymolScriptOverlaysTheSurfaceOnTheStructure) {
+  if (std::system("PATH=/usr/bin:/bin command -v pymol > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "pymol not installed (skipped on purpose; scripts/install-deps.sh installs it)";
+  write_text(folder_ / "ser.pqr", kPqr);
+  ASSERT_EQ(run_cli("map " + (folder_ / "ser.pqr").string() + " -o " + (folder_ / "out").string()).exit_code, 0);
+  const fs::path script = fs::path(SPHEREMAP_SOURCE_DIR) / "python" / "spheremap_pymol.py";
+  const fs::path png = folder_ / "ser.png";
+  write_text(folder_ / "check.pml",
+             "run " + script.string() + "\nspheremap_load " + (folder_ / "out").string() +
+                 ", property=hydrophobicity, prefix=ser\n"
+                 "python\n"
+                 "from pymol import cmd\n"
+                 "s, m, p = (cmd.get_extent(n) for n in ('ser_surface', 'ser_structure', 'ser_sphere'))\n"
+                 "inside = all(s[0][k] < m[0][k] and m[1][k] < s[1][k] and m[0][k] - s[0][k] < 3 and "
+                 "s[1][k] - m[1][k] < 3 for k in range(3))\n"
+                 "beside = p[0][0] > s[1][0]\n"
+                 "print('OVERLAY', 'yes' if inside else 'no', 'BESIDE', 'yes' if beside else 'no', "
+                 "'BAR', 'yes' if 'ser_bar' in cmd.get_names('all') else 'no')\n"
+                 "python end\n"
+                 "png " +
+                 png.string() + ", width=400, height=300, ray=1\n");
+  const std::string command = "cd " + folder_.string() + " && PATH=/usr/bin:/bin pymol -cq check.pml > pymol.txt 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << slurp(folder_ / "pymol.txt");
+  const std::string output = slurp(folder_ / "pymol.txt");
+  EXPECT_NE(output.find("OVERLAY yes BESIDE yes BAR yes"), std::string::npos) << output;
+  ASSERT_TRUE(fs::exists(png)) << output;
+  EXPECT_GT(fs::file_size(png), 2000u);
+}
+
 class DataProperties : public Properties {};
 
 // Crambin with a values file: every output, the values round trip, the areas, the two PLYs' agreement.
