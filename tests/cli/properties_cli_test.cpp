@@ -85,6 +85,13 @@ TEST_F(Properties, PqrKeepsItsHydrogensChargesAndPotentialMap) {
     EXPECT_EQ(refused.exit_code, 1) << bad << "\n" << refused.output;
     EXPECT_FALSE(fs::exists(folder_ / "bad")) << bad;
   }
+  // --apbs without APBS (nor pdb2pqr) on the PATH: a message naming what to install, exit 1, nothing written.
+  const std::string no_apbs = "PATH=/var/empty " + std::string(SPHEREMAP_CLI_PATH) + " map " + pqr + " -o " +
+                              (folder_ / "bad").string() + " --apbs > " + (folder_ / "apbs.txt").string() + " 2>&1";
+  const int status = std::system(no_apbs.c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << slurp(folder_ / "apbs.txt");
+  EXPECT_NE(slurp(folder_ / "apbs.txt").find("apbs"), std::string::npos) << slurp(folder_ / "apbs.txt");
+  EXPECT_FALSE(fs::exists(folder_ / "bad"));
 }
 
 // The PyMOL script loads a map (Debian's pymol, headless): the surface overlays the structure, the sphere
