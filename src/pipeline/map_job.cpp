@@ -13,7 +13,9 @@
 #include "spheremap/error.hpp"
 #include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/atomic_file.hpp"
+#include "spheremap/io/gltf.hpp"
 #include "spheremap/io/ply.hpp"
+#include "spheremap/geometry/vec.hpp"
 #include "spheremap/pipeline/map_tables.hpp"
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/geometry/normals.hpp"
@@ -395,6 +397,26 @@ void add_property_attributes(Mesh& surface, const MapJobResult& result, const Ma
   for (const char* channel : channels) ply.uchar_attributes.insert(channel);
 }
 
+// The glTF twin of a PLY output: positions, normals, the PLY's colours, every property as _<NAME>.
+GlbMesh glb_mesh(const Mesh& ply, const std::vector<Vec3>& normals, const MapJobResult& result, const char* name) {
+  GlbMesh glb;
+  glb.name = name;
+  glb.positions = ply.positions;
+  glb.normals = normals;
+  glb.triangles = ply.triangles;
+  const auto red = ply.integer_attributes.find(attributes::kRed);
+  if (red != ply.integer_attributes.end()) {
+    const auto& green = ply.integer_attributes.at(attributes::kGreen);
+    const auto& blue = ply.integer_attributes.at(attributes::kBlue);
+    glb.colours.resize(ply.vertex_count());
+    for (std::size_t v = 0; v < ply.vertex_count(); ++v)
+      glb.colours[v] = {static_cast<std::uint8_t>(red->second[v]), static_cast<std::uint8_t>(green[v]),
+                        static_cast<std::uint8_t>(blue[v])};
+  }
+  for (const auto& p : result.properties) glb.attributes.emplace_back(glb_attribute_name(p.info.name), p.values);
+  return glb;
+}
+
 }  // namespace
 
 void write_map_outputs(const std::filesystem::path& directory, const MapJobResult& result,
@@ -416,6 +438,14 @@ void write_map_outputs(const std::filesystem::path& directory, const MapJobResul
   sphere.positions = result.map.sphere;
   write_ply(directory / kSurfaceFile, surface, ply);
   write_ply(directory / kSphereFile, sphere, ply);
+  // The surface's normals from the PLY columns (rounded to float); the sphere's are its unit points.
+  std::vector<Vec3> normals(surface.vertex_count());
+  for (std::size_t v = 0; v < normals.size(); ++v)
+    normals[v] = normalized(Vec3{surface.real_attributes.at(attributes::kNormalX)[v],
+                                 surface.real_attributes.at(attributes::kNormalY)[v],
+                                 surface.real_attributes.at(attributes::kNormalZ)[v]});
+  write_glb(directory / kSurfaceGlbFile, glb_mesh(surface, normals, result, "surface"));
+  write_glb(directory / kSphereGlbFile, glb_mesh(sphere, result.map.sphere, result, "sphere"));
   if (result.from_structure) {
     write_file_atomically(directory / kAtomsFile, atoms_csv(result));
     write_file_atomically(directory / kResiduesFile, residues_csv(result));

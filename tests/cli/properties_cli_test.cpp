@@ -139,7 +139,7 @@ TEST_F(DataProperties, CrambinOutputsAgreeAndAddUp) {
   const auto run = run_cli(command + (folder_ / "a").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   ASSERT_EQ(run_cli(command + (folder_ / "b").string()).exit_code, 0);
-  for (const char* file : {"surface.ply", "sphere.ply", "atoms.csv", "residues.csv"})
+  for (const char* file : {"surface.ply", "sphere.ply", "surface.glb", "sphere.glb", "atoms.csv", "residues.csv"})
     EXPECT_EQ(slurp(folder_ / "a" / file), slurp(folder_ / "b" / file)) << file;  // deterministic
 
   const auto surface = read_ply_columns(folder_ / "a" / "surface.ply");

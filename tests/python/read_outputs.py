@@ -1,9 +1,11 @@
 """Reads a map's surface.ply and sphere.ply with the tools users have (Debian's python3-meshio and
-python3-open3d): every numeric vertex property, the colours and the normals must come through.
+python3-open3d): every numeric vertex property, the colours and the normals must come through; and the
+glTF twins (surface.glb, sphere.glb) with Open3D's glTF reader (tinygltf).
 
 Usage: read_outputs.py FOLDER PROPERTY...   (run with PATH=/usr/bin:/bin: the system's python3)
 Exit 0: read; 1: a reader failed or lost a property; 77: neither meshio nor open3d is installed (skip).
 """
+import os
 import sys
 
 
@@ -52,6 +54,12 @@ def main():
                 print(f"open3d (point cloud): {path} lacks {missing}; it has {sorted(names)}")
                 return 1
             checked.append(f"open3d {name}: {len(mesh.vertices)} vertices, colours and normals, {len(names)} attributes")
+        if open3d is not None and os.path.exists(path[:-4] + ".glb"):
+            glb = open3d.io.read_triangle_mesh(path[:-4] + ".glb")  # tinygltf inside
+            if len(glb.vertices) != len(open3d.io.read_triangle_mesh(path).vertices) or not glb.has_vertex_colors():
+                print(f"open3d: {path[:-4]}.glb: {len(glb.vertices)} vertices, colours {glb.has_vertex_colors()}")
+                return 1
+            checked.append(f"open3d {name[:-4]}.glb: {len(glb.vertices)} vertices with colours")
     print("\n".join(checked))
     return 0
 

@@ -102,10 +102,13 @@ std::string summary_text(const MapJobResult& result);
 inline constexpr const char* kSurfaceFile = "surface.ply";
 inline constexpr const char* kSphereFile = "sphere.ply";
 inline constexpr const char* kReportFile = "report.json";
+inline constexpr const char* kSurfaceGlbFile = "surface.glb";  // glTF 2.0 twins of the PLY files
+inline constexpr const char* kSphereGlbFile = "sphere.glb";
 inline constexpr const char* kAtomsFile = "atoms.csv";        // structures: one row per atom, by `atomid`
 inline constexpr const char* kResiduesFile = "residues.csv";  // structures: one row per residue
 
-/// Writes `surface.ply`, `sphere.ply`, for a structure `atoms.csv` and `residues.csv` (map_tables.hpp), and
+/// Writes `surface.ply`, `sphere.ply`, their glTF 2.0 twins `surface.glb` and `sphere.glb` (io/gltf.hpp:
+/// COLOR_0 the PLY's colours, each property as attribute `_<NAME>`), for a structure `atoms.csv` and `residues.csv` (map_tables.hpp), and
 /// `report.json` (make_report) into `directory` (created if missing), each atomically, report.json last. Both
 /// PLY files have the same vertices in the same order and the same triangles, with per-vertex `theta`, `phi`
 /// (double), `input_vertex`, for a structure `atomid` (int), every property as float `vertex_<name>`, the
