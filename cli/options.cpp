@@ -127,6 +127,16 @@ void MapCliOptions::add(CLI::App* command, WeightingCount count) {
       ->check(CLI::PositiveNumber);
   command->add_flag("--ascii", job.ascii, "Write ASCII PLY with full precision (%.17g), e.g. for PyMOL");
   add_equalizing_rounds_option(command, job.map);
+  command
+      ->add_option("--objective", objective,
+                   "What the certified map is optimized for on the sphere, never leaving the certified maps: "
+                   "paper (the paper's map, default), area (equal area), conformal (angles), balanced (both: "
+                   "symmetric Dirichlet); an optimized map that does not certify is dropped for the paper's")
+      ->check(CLI::IsMember({"paper", "area", "conformal", "balanced"}));
+  command
+      ->add_option("--objective-iterations", job.map.objective_max_iterations,
+                   "With --objective: at most this many Newton steps (default 300)")
+      ->check(CLI::PositiveNumber);
   command->add_flag("--no-repair", no_repair,
                     "The paper's algorithm only: no re-weighting, no untangling (the certificate still runs)");
   structure.add(command, job);
@@ -140,6 +150,7 @@ void MapCliOptions::apply() {
   job.map.solver = solver == "gauss-seidel" ? Solver::kGaussSeidel : Solver::kDirect;
   if (!component.empty()) job.prepare.component = parse_component(component);
   job.map.repair = !no_repair;
+  job.map.objective = parse_map_objective(objective);
 }
 
 std::vector<Weights> MapCliOptions::weightings() const {

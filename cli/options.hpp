@@ -48,7 +48,7 @@ struct PropertyCliOptions {
 
 struct MapCliOptions {
   MapJobOptions job;
-  std::string weights = "uniform", solver = "direct", component;
+  std::string weights = "uniform", solver = "direct", component, objective = "paper";
   bool no_repair = false;
   StructureCliOptions structure;
   PropertyCliOptions properties;

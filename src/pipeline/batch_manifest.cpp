@@ -58,7 +58,7 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
     radii = Json::object();
     for (const auto& [element, radius] : *job.structure.radii) radii[element] = radius;
   }
-  return {
+  nlohmann::ordered_json json = {
       {"weights", weights},
       {"solver", to_string(job.map.solver)},
       {"repair", job.map.repair},
@@ -85,6 +85,12 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
         {"max_error", job.simplify.max_error},
         {"mesh_files", job.simplify_mesh_files}}},
   };
+  // Only an objective other than the paper's map is written, so that batches made before it resume.
+  if (job.map.objective != MapObjective::kPaper) {
+    json["objective"] = to_string(job.map.objective);
+    json["objective_max_iterations"] = job.map.objective_max_iterations;
+  }
+  return json;
 }
 
 namespace pipeline_detail {

@@ -337,6 +337,17 @@ std::string summary_text(const MapJobResult& result) {
         e.levels, e.base_vertices, e.insertions, e.optimizer_iterations, e.final_iterations,
         to_string(e.final_stop_reason), e.valid ? "valid" : "NOT VALID (doubles could not hold it)");
   }
+  const auto& objective = map.diagnostics.objective;
+  if (objective.objective != MapObjective::kPaper) {
+    const auto& o = objective.optimization;
+    const char* outcome = objective.outcome == ObjectiveOutcome::kOptimized ? "the map below"
+                          : objective.outcome == ObjectiveOutcome::kResultNotCertified
+                              ? "NOT CERTIFIED, the map below is the unoptimized one"
+                              : "not run: the map was not certified";
+    text += fmt::format("  objective {} ({}): energy {:.6g} -> {:.6g} in {} iterations ({}); {}\n",
+                        to_string(objective.objective), to_string(objective.energy), o.energy_before, o.energy_after,
+                        o.iterations, to_string(o.stop_reason), outcome);
+  }
   text += fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
                       c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage,
                       c.decided_exactly);

@@ -176,13 +176,19 @@ nlohmann::json properties_json(const MapJobResult& result) {
 }
 
 nlohmann::json options_json(const MapJobResult& result, const MapJobOptions& options) {
-  return {{"weights", to_string(options.map.weights)},
-          {"solver", to_string(options.map.solver)},
-          {"repair", options.map.repair},
-          {"collapse_floor", options.map.collapse_floor},
-          {"max_equalizing_rounds", options.map.max_equalizing_rounds},
-          {"weld_tolerance", options.prepare.weld_tolerance},
-          {"poles_given", result.map.poles.from_options}};
+  nlohmann::json json = {{"weights", to_string(options.map.weights)},
+                         {"solver", to_string(options.map.solver)},
+                         {"repair", options.map.repair},
+                         {"collapse_floor", options.map.collapse_floor},
+                         {"max_equalizing_rounds", options.map.max_equalizing_rounds},
+                         {"weld_tolerance", options.prepare.weld_tolerance},
+                         {"poles_given", result.map.poles.from_options}};
+  // Only an objective other than the paper's map is written: the default reports stay as they were.
+  if (options.map.objective != MapObjective::kPaper) {
+    json["objective"] = to_string(options.map.objective);
+    json["objective_max_iterations"] = options.map.objective_max_iterations;
+  }
+  return json;
 }
 
 nlohmann::json topology_repair_json(const HandleRepairReport& repair) {
@@ -252,6 +258,17 @@ nlohmann::json fallback_json(const FallbackReport& fallback) {
           {"valid", e.valid}};
 }
 
+nlohmann::json objective_json(const ObjectiveReport& objective) {
+  const auto& o = objective.optimization;
+  return {{"objective", to_string(objective.objective)},
+          {"energy", to_string(objective.energy)},
+          {"outcome", to_string(objective.outcome)},
+          {"iterations", o.iterations},
+          {"stop_reason", to_string(o.stop_reason)},
+          {"energy_before", o.energy_before},
+          {"energy_after", o.energy_after}};
+}
+
 nlohmann::json map_json(const SphereMap& map) {
   const auto& construction = map.diagnostics.construction;
   const auto& solve = map.diagnostics.solve;
@@ -287,6 +304,8 @@ nlohmann::json map_json(const SphereMap& map) {
                         {"superposition_scale", map.superposition.scale}};
   // Only maps that needed the fallback carry its report: every other report stays as it was.
   if (map.diagnostics.fallback.ran) json["fallback"] = fallback_json(map.diagnostics.fallback);
+  if (map.diagnostics.objective.objective != MapObjective::kPaper)
+    json["objective"] = objective_json(map.diagnostics.objective);
   return json;
 }
 

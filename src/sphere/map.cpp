@@ -11,6 +11,7 @@
 
 #include "finish.hpp"
 #include "harmonic.hpp"
+#include "objective.hpp"
 #include "planar.hpp"
 #include "reweighting.hpp"
 #include "spheremap/error.hpp"
@@ -31,6 +32,30 @@ const char* to_string(Weights weights) {
     case Weights::kMeanValue: return "mean-value";
   }
   return "?";
+}
+const char* to_string(MapObjective objective) {
+  switch (objective) {
+    case MapObjective::kPaper: return "paper";
+    case MapObjective::kArea: return "area";
+    case MapObjective::kConformal: return "conformal";
+    case MapObjective::kBalanced: return "balanced";
+  }
+  return "?";
+}
+const char* to_string(ObjectiveOutcome outcome) {
+  switch (outcome) {
+    case ObjectiveOutcome::kNone: return "";
+    case ObjectiveOutcome::kOptimized: return "optimized";
+    case ObjectiveOutcome::kStartNotCertified: return "start-not-certified";
+    case ObjectiveOutcome::kResultNotCertified: return "result-not-certified";
+  }
+  return "?";
+}
+MapObjective parse_map_objective(const std::string& name) {
+  for (const auto objective :
+       {MapObjective::kPaper, MapObjective::kArea, MapObjective::kConformal, MapObjective::kBalanced})
+    if (name == to_string(objective)) return objective;
+  throw InputError(fmt::format("objective '{}': expected paper, area, conformal or balanced", name));
 }
 const char* to_string(Solver solver) { return solver == Solver::kDirect ? "direct" : "gauss-seidel"; }
 const char* to_string(MapMethod method) {
@@ -135,6 +160,7 @@ std::vector<Vec3> map_refined(const Mesh& mesh, const VertexRings& rings, const 
   MapOptions inner = options;
   inner.poles = std::make_pair(north, inner_south);
   inner.fallback = false;  // the fallback, if needed, maps the input itself (map_to_sphere)
+  inner.objective = MapObjective::kPaper;  // the input's map is optimized, not the subdivision's
   const SphereMap refined_map = map_to_sphere(refined, inner);
   // Back to the inner map's pole-aligned frame: θ, φ and the superposition are taken from there.
   const auto undo = transposed(refined_map.superposition.rotation);
@@ -280,6 +306,13 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
   if (!finished) finished = detail::finish_map(mesh, input, std::move(plain.sphere), options, &timer);
   if (options.repair && options.fallback && !finished->certificate.certified() && n >= 5)
     run_fallback(mesh, input, options, result, *finished, timer);
+  if (options.objective != MapObjective::kPaper) {
+    const auto south = diagnostics.fallback.ran && diagnostics.construction.method == MapMethod::kFallbackProgressive
+                           ? diagnostics.fallback.south
+                           : result.poles.south;
+    detail::optimize_for_objective(mesh, input, result.poles.north, south, options, *finished, diagnostics.objective,
+                                   timer);
+  }
   result.superposition = finished->superposition;
   repair.untangling_moves = finished->untangling_moves;
   result.certificate = std::move(finished->certificate);

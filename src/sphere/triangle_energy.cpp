@@ -64,45 +64,129 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
   return n * (1 + (rest.area / s) * (rest.area / s));
 }
 
-double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
-                           Matrix9& hessian) {
-  const double s = half_det(a, b, c);
-  const double c0 = rest.cot[0], c1 = rest.cot[1], c2 = rest.cot[2];
-  const double n = 0.5 * (c0 * squared_distance(b, c) + c1 * squared_distance(c, a) + c2 * squared_distance(a, b));
-  // ∇N and the cotangent stiffness K (∇²N = K ⊗ I3).
-  Vector9 grad_n;
-  grad_n << eigen(c1 * (a - c) + c2 * (a - b)), eigen(c0 * (b - c) + c2 * (b - a)), eigen(c0 * (c - b) + c1 * (c - a));
+namespace {
+
+// What every energy is made of: N = ½ Σ cot_k |e_k|² (the Dirichlet energy of the affine map from the
+// rest triangle to the chord triangle), S = ½·det[a, b, c], and their derivatives (∇²N = K ⊗ I3).
+struct ChordTerms {
+  double n, s;
+  Vector9 grad_n, grad_s;
   Eigen::Matrix3d k;
-  k << c1 + c2, -c2, -c1, -c2, c0 + c2, -c0, -c1, -c0, c0 + c1;
+  Matrix9 hess_s;
+};
+
+ChordTerms chord_terms(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+  ChordTerms t;
+  t.s = half_det(a, b, c);
+  const double c0 = rest.cot[0], c1 = rest.cot[1], c2 = rest.cot[2];
+  t.n = 0.5 * (c0 * squared_distance(b, c) + c1 * squared_distance(c, a) + c2 * squared_distance(a, b));
+  t.grad_n << eigen(c1 * (a - c) + c2 * (a - b)), eigen(c0 * (b - c) + c2 * (b - a)),
+      eigen(c0 * (c - b) + c1 * (c - a));
+  t.k << c1 + c2, -c2, -c1, -c2, c0 + c2, -c0, -c1, -c0, c0 + c1;
   // ∇S: ½ b×c etc., each written as a short cross product plus one tangent to its corner, so that the
   // tangential part (all the optimization sees) keeps its precision on tiny triangles.
-  Vector9 grad_s;
-  grad_s << eigen(0.5 * (cross(b - a, c - a) + cross(a, c - b))), eigen(0.5 * (cross(c - b, a - b) + cross(b, a - c))),
-      eigen(0.5 * (cross(a - c, b - c) + cross(c, b - a)));
-  Matrix9 hess_s = Matrix9::Zero();
-  hess_s.block<3, 3>(0, 3) = 0.5 * epsilon_contract(c);
-  hess_s.block<3, 3>(0, 6) = -0.5 * epsilon_contract(b);
-  hess_s.block<3, 3>(3, 6) = 0.5 * epsilon_contract(a);
-  hess_s.block<3, 3>(3, 0) = hess_s.block<3, 3>(0, 3).transpose();
-  hess_s.block<3, 3>(6, 0) = hess_s.block<3, 3>(0, 6).transpose();
-  hess_s.block<3, 3>(6, 3) = hess_s.block<3, 3>(3, 6).transpose();
+  t.grad_s << eigen(0.5 * (cross(b - a, c - a) + cross(a, c - b))),
+      eigen(0.5 * (cross(c - b, a - b) + cross(b, a - c))), eigen(0.5 * (cross(a - c, b - c) + cross(c, b - a)));
+  t.hess_s = Matrix9::Zero();
+  t.hess_s.block<3, 3>(0, 3) = 0.5 * epsilon_contract(c);
+  t.hess_s.block<3, 3>(0, 6) = -0.5 * epsilon_contract(b);
+  t.hess_s.block<3, 3>(3, 6) = 0.5 * epsilon_contract(a);
+  t.hess_s.block<3, 3>(3, 0) = t.hess_s.block<3, 3>(0, 3).transpose();
+  t.hess_s.block<3, 3>(6, 0) = t.hess_s.block<3, 3>(0, 6).transpose();
+  t.hess_s.block<3, 3>(6, 3) = t.hess_s.block<3, 3>(3, 6).transpose();
+  return t;
+}
 
+// The partial derivatives of an energy f(N, S) of one triangle.
+struct Partials {
+  double f, n, s, nn, ns, ss;
+};
+
+// Chain rule: ∇f = f_N ∇N + f_S ∇S, ∇²f = f_N ∇²N + f_S ∇²S + f_NN ∇N∇Nᵀ + f_SS ∇S∇Sᵀ + f_NS (∇N∇Sᵀ + ∇S∇Nᵀ).
+double chain(const ChordTerms& t, const Partials& d, Vector9& gradient, Matrix9& hessian) {
+  gradient = d.n * t.grad_n + d.s * t.grad_s;
+  hessian = d.s * t.hess_s + d.nn * t.grad_n * t.grad_n.transpose() + d.ss * t.grad_s * t.grad_s.transpose() +
+            d.ns * (t.grad_n * t.grad_s.transpose() + t.grad_s * t.grad_n.transpose());
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) hessian.block<3, 3>(3 * i, 3 * j).diagonal().array() += d.n * t.k(i, j);
+  return d.f;
+}
+
+double dirichlet_n(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * (rest.cot[0] * squared_distance(b, c) + rest.cot[1] * squared_distance(c, a) +
+                rest.cot[2] * squared_distance(a, b));
+}
+
+// f = A ln²(S/A) + w A N/S.
+Partials log_area_partials(double area, double n, double s) {
+  const double w = kShapeWeight, l = std::log(s / area);
+  return {area * l * l + w * area * n / s,
+          w * area / s,
+          2 * area * l / s - w * area * n / (s * s),
+          0,
+          -w * area / (s * s),
+          2 * area * (1 - l) / (s * s) + 2 * w * area * n / (s * s * s)};
+}
+
+// f = A N/S + w A³/S².
+Partials conformal_partials(double area, double n, double s) {
+  const double w = kCollapseBarrierWeight, a3 = area * area * area;
+  return {area * n / s + w * a3 / (s * s),
+          area / s,
+          -area * n / (s * s) - 2 * w * a3 / (s * s * s),
+          0,
+          -area / (s * s),
+          2 * area * n / (s * s * s) + 6 * w * a3 / (s * s * s * s)};
+}
+
+}  // namespace
+
+double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
+                           Matrix9& hessian) {
+  const ChordTerms t = chord_terms(rest, a, b, c);
+  const double s = t.s, n = t.n;
   // E = N (1 + Q), Q = A²/S².
   const double a2 = rest.area * rest.area;
   const double q = a2 / (s * s);
-  const Vector9 grad_q = (-2 * a2 / (s * s * s)) * grad_s;
-  gradient = (1 + q) * grad_n + n * grad_q;
-  hessian = n * ((6 * a2 / (s * s * s * s)) * grad_s * grad_s.transpose() - (2 * a2 / (s * s * s)) * hess_s) +
-            grad_n * grad_q.transpose() + grad_q * grad_n.transpose();
+  const Vector9 grad_q = (-2 * a2 / (s * s * s)) * t.grad_s;
+  gradient = (1 + q) * t.grad_n + n * grad_q;
+  hessian = n * ((6 * a2 / (s * s * s * s)) * t.grad_s * t.grad_s.transpose() - (2 * a2 / (s * s * s)) * t.hess_s) +
+            t.grad_n * grad_q.transpose() + grad_q * t.grad_n.transpose();
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) hessian.block<3, 3>(3 * i, 3 * j).diagonal().array() += (1 + q) * k(i, j);
+    for (int j = 0; j < 3; ++j) hessian.block<3, 3>(3 * i, 3 * j).diagonal().array() += (1 + q) * t.k(i, j);
   return n * (1 + q);
+}
+
+double log_area_ratio(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double s = half_det(a, b, c);
+  if (!(s > 0)) return std::numeric_limits<double>::infinity();
+  return log_area_partials(rest.area, dirichlet_n(rest, a, b, c), s).f;
+}
+
+double log_area_ratio(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
+                      Matrix9& hessian) {
+  const ChordTerms t = chord_terms(rest, a, b, c);
+  return chain(t, log_area_partials(rest.area, t.n, t.s), gradient, hessian);
+}
+
+double conformal(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double s = half_det(a, b, c);
+  if (!(s > 0)) return std::numeric_limits<double>::infinity();
+  return conformal_partials(rest.area, dirichlet_n(rest, a, b, c), s).f;
+}
+
+double conformal(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
+                 Matrix9& hessian) {
+  const ChordTerms t = chord_terms(rest, a, b, c);
+  return chain(t, conformal_partials(rest.area, t.n, t.s), gradient, hessian);
 }
 
 double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet:
       return symmetric_dirichlet(rest, a, b, c);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, a, b, c);
+    case SphereEnergy::kConformal: return conformal(rest, a, b, c);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -112,6 +196,8 @@ double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet:
       return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, a, b, c, gradient, hessian);
+    case SphereEnergy::kConformal: return conformal(rest, a, b, c, gradient, hessian);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }

@@ -54,8 +54,8 @@ TEST_F(Cli, MapAndBatchShareTheMapOptions) {
     return help.substr(start, help.find('\n', start) - start);
   };
   for (const char* option : {"--solver", "--component", "--weld-tolerance", "--collapse-floor", "--ascii",
-                             "--equalizing-rounds", "--no-repair", "--probe", "--grid", "--preset", "--mesh-edge",
-                             "--keep-topology"})
+                             "--equalizing-rounds", "--objective", "--objective-iterations", "--no-repair", "--probe",
+                             "--grid", "--preset", "--mesh-edge", "--keep-topology"})
     EXPECT_EQ(line_of(map, option), line_of(batch, option)) << option;
 }
 
@@ -190,6 +190,27 @@ TEST_F(Cli, EqualizingRoundsOptionReachesTheMapAndTheReport) {
   ASSERT_EQ(by_default.exit_code, 0) << by_default.output;
   EXPECT_NE(slurp(folder_ / "default" / "report.json").find("\"max_equalizing_rounds\": 12"), std::string::npos);
   EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "bad").string() + " --equalizing-rounds -1").exit_code, 1);
+}
+
+TEST_F(Cli, ObjectiveOptionOptimizesTheCertifiedMapAndSaysSo) {
+  const auto input = write_obj(folder_ / "dumbbell.obj", make_dumbbell(3.0, 0.4, 24, 16));
+  const auto area = run_cli("map " + input + " -o " + (folder_ / "area").string() + " --objective area");
+  ASSERT_EQ(area.exit_code, 0) << area.output;
+  EXPECT_NE(area.output.find("objective area (log-area-ratio)"), std::string::npos) << area.output;
+  const auto report = nlohmann::json::parse(slurp(folder_ / "area" / "report.json"));
+  EXPECT_EQ(report["options"]["objective"], "area");
+  EXPECT_EQ(report["map"]["objective"]["outcome"], "optimized");
+  EXPECT_TRUE(report["certificate"]["certified"].get<bool>());
+  const auto plain = run_cli("map " + input + " -o " + (folder_ / "plain").string());
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const auto paper = nlohmann::json::parse(slurp(folder_ / "plain" / "report.json"));
+  EXPECT_FALSE(paper["map"].contains("objective"));
+  EXPECT_LT(report["distortion"]["area_log_ratio_mean"].get<double>(),
+            paper["distortion"]["area_log_ratio_mean"].get<double>());
+  // --objective paper is the default, byte for byte.
+  ASSERT_EQ(run_cli("map " + input + " -o " + (folder_ / "paper").string() + " --objective paper").exit_code, 0);
+  EXPECT_EQ(slurp(folder_ / "paper" / "sphere.ply"), slurp(folder_ / "plain" / "sphere.ply"));
+  EXPECT_EQ(run_cli("map " + input + " -o " + (folder_ / "bad").string() + " --objective equal").exit_code, 1);
 }
 
 TEST_F(Cli, UnreadableInputAndBadOptionsExitOne) {

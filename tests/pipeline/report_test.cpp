@@ -126,5 +126,34 @@ TEST_F(Report, NullNumbersReadAsNaN) {
   EXPECT_NE(refusal(with_null).find("certificate.folded"), std::string::npos);
 }
 
+// The paper's map (the default) writes no objective keys; another objective writes its option, what the
+// optimization did, and its time.
+TEST_F(Report, WritesTheObjectiveOnlyWhenOneIsChosen) {
+  const nlohmann::json plain = report();
+  EXPECT_FALSE(plain["options"].contains("objective"));
+  EXPECT_FALSE(plain["map"].contains("objective"));
+  EXPECT_FALSE(plain["timings_seconds"].contains("objective"));
+  MapJobOptions options;
+  options.map.objective = MapObjective::kArea;
+  const MapJobResult area = run_map_job(make_dumbbell(3.0, 0.4, 24, 16), "dumbbell", options);
+  const nlohmann::json json = make_report(area, options);
+  EXPECT_EQ(json["options"]["objective"], "area");
+  EXPECT_EQ(json["options"]["objective_max_iterations"], options.map.objective_max_iterations);
+  const auto& objective = json["map"]["objective"];
+  const auto& o = area.map.diagnostics.objective.optimization;
+  EXPECT_EQ(objective["objective"], "area");
+  EXPECT_EQ(objective["energy"], "log-area-ratio");
+  EXPECT_EQ(objective["outcome"], "optimized");
+  EXPECT_EQ(objective["iterations"], o.iterations);
+  EXPECT_EQ(objective["stop_reason"], to_string(o.stop_reason));
+  EXPECT_EQ(objective["energy_before"], o.energy_before);
+  EXPECT_EQ(objective["energy_after"], o.energy_after);
+  EXPECT_LT(o.energy_after, o.energy_before);
+  EXPECT_TRUE(json["timings_seconds"].contains("objective"));
+  EXPECT_TRUE(json["certificate"]["certified"]);
+  // read_report still reads it (the objective's keys are extra).
+  EXPECT_EQ(read_report(json, "x").input, "dumbbell");
+}
+
 }  // namespace
 }  // namespace spheremap

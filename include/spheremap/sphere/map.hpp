@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "spheremap/mesh.hpp"
 #include "spheremap/sphere/certify.hpp"
 #include "spheremap/sphere/fallback.hpp"
+#include "spheremap/sphere/optimize.hpp"
 #include "spheremap/timing.hpp"
 
 namespace spheremap {
@@ -20,6 +22,14 @@ enum class Weights {
   kCotangent,  // ½(cot α + cot β): the paper's comparison; can be negative, so it may fold
   kMeanValue,  // Floater 2003: (tan(α/2) + tan(β/2)) / |e|, always positive, closer to conformal
 };
+/// What the certified map is optimized for afterwards (report.json: options.objective, map.objective).
+enum class MapObjective {
+  kPaper,      // "paper": the paper's map as it is (no optimization)
+  kArea,       // "area": (almost) equal area, SphereEnergy::kLogAreaRatio
+  kConformal,  // "conformal": angle-preserving as far as a certified map allows, SphereEnergy::kConformal
+  kBalanced,   // "balanced": area and angles together, SphereEnergy::kSymmetricDirichlet
+};
+
 enum class Solver {
   kDirect,       // sparse Cholesky (CHOLMOD) for symmetric systems, sparse LU (UMFPACK) otherwise
   kGaussSeidel,  // the paper's relaxation, to numerical precision (or the iteration cap)
@@ -48,6 +58,10 @@ struct MapOptions {
   /// With repair: when the map is still not certified, build one by progressive embedding and
   /// optimization on the sphere (sphere/fallback.hpp), with the same poles.
   bool fallback = true;
+  /// After the map is certified: optimize its points on the sphere for this objective, keeping every
+  /// triangle positively oriented and the poles fixed; the result replaces the map only if it certifies.
+  MapObjective objective = MapObjective::kPaper;
+  int objective_max_iterations = 300;
 };
 
 struct SplitEdge {
@@ -131,12 +145,28 @@ struct RepairDiagnostics {
   std::int64_t untangling_moves = 0;
 };
 
+/// What the objective's optimization did (report.json: map.objective, when options.objective is not paper).
+enum class ObjectiveOutcome {
+  kNone,                // "": not run (objective paper)
+  kOptimized,           // "optimized": the optimized map certified and replaced the map
+  kStartNotCertified,   // "start-not-certified": the map was not certified, so nothing was optimized
+  kResultNotCertified,  // "result-not-certified": the optimized map did not certify; the map is the start
+};
+
+struct ObjectiveReport {
+  MapObjective objective = MapObjective::kPaper;
+  ObjectiveOutcome outcome = ObjectiveOutcome::kNone;
+  SphereEnergy energy = SphereEnergy::kSymmetricDirichlet;
+  SphereOptimizeReport optimization;  // energies per unit of the map's area
+};
+
 /// How the map was made: for the report and for tuning, not needed to use the map.
 struct MapDiagnostics {
   MapConstruction construction;
   SolveDiagnostics solve;
   RepairDiagnostics repair;
   FallbackReport fallback;         // ran only when the map ended uncertified after the repair
+  ObjectiveReport objective;
   std::vector<StageTime> timings;  // "poles", "rings" or "solve", "certify-plain", "reweight", ..., "fallback"
 };
 
@@ -152,7 +182,11 @@ struct SphereMap {
   MapDiagnostics diagnostics;
 };
 
-/// Maps `mesh` one-to-one onto the unit sphere.
+/// The objective named `name` ("paper", "area", "conformal", "balanced").
+/// Throws InputError naming the choices otherwise.
+MapObjective parse_map_objective(const std::string& name);
+
+/// Maps `mesh` one-to-one onto the unit sphere, then optimizes it for options.objective.
 /// Preconditions: `mesh` is closed, 2-manifold, connected, genus 0 and oriented outward, as produced by
 /// prepare_mesh; at least 4 vertices. options.poles, if set, are indices of `mesh`'s vertices.
 /// Throws InputError if options.poles are out of range, equal, or joined by an edge, and MeshRefused if
@@ -163,6 +197,8 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options = {});
 /// The names report.json and the command line use (e.g. "mean-value", "direct", "poles-and-rings").
 /// Never throw.
 const char* to_string(Weights weights);
+const char* to_string(MapObjective objective);
+const char* to_string(ObjectiveOutcome outcome);
 const char* to_string(Solver solver);
 const char* to_string(MapMethod method);
 const char* to_string(MeridianMethod method);

@@ -18,7 +18,19 @@ enum class SphereEnergy {
   /// the map's) to its chord triangle on the sphere, with ½·det[a, b, c] as the image area: area and
   /// angles together, +inf as a triangle collapses or folds.
   kSymmetricDirichlet,
+  /// Equal area: A·ln²(S/A) per triangle (A its target area, S its ½·det), plus kShapeWeight times the
+  /// conformal distortion A·N/S (N the Dirichlet energy of the affine map), which pins the shapes the
+  /// area term leaves free and is the barrier: +inf as a triangle collapses or folds.
+  kLogAreaRatio,
+  /// Conformal: A·N/S (MIPS: σ₁/σ₂ + σ₂/σ₁ of each triangle's affine map, weighted by its area, 2 at a
+  /// similarity whatever the scale) plus kCollapseBarrierWeight·A·(A/S)², which only matters when a
+  /// triangle keeps much less than its share (+inf as it collapses or folds).
+  kConformal,
 };
+
+/// Weights of the secondary terms of kLogAreaRatio and kConformal (see there).
+inline constexpr double kShapeWeight = 0.1;
+inline constexpr double kCollapseBarrierWeight = 1e-6;
 
 struct SphereOptimizeOptions {
   SphereEnergy energy = SphereEnergy::kSymmetricDirichlet;

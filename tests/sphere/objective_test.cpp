@@ -1,0 +1,190 @@
+// The objectives of a certified map (MapOptions::objective): the new energies' derivatives, each energy
+// lowered on a valid map without leaving the valid maps, and map_to_sphere's optimized maps certified,
+// with the distortion each objective is for lowered, on an icosphere with a perturbed rest shape and on
+// hard cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../../src/sphere/triangle_energy.hpp"
+#include "spheremap/error.hpp"
+#include "spheremap/geometry/predicates.hpp"
+#include "spheremap/geometry/vec.hpp"
+#include "spheremap/shapes/hard_cases.hpp"
+#include "spheremap/shapes/shapes.hpp"
+#include "spheremap/sphere/certify.hpp"
+#include "spheremap/sphere/map.hpp"
+#include "spheremap/sphere/optimize.hpp"
+#include "spheremap/topology/prepare.hpp"
+
+namespace spheremap {
+namespace {
+
+Vec3 unit(double x, double y, double z) { return normalized(Vec3{x, y, z}); }
+
+// Central differences of the energy and of its gradient against the analytic gradient and Hessian.
+void check_derivatives(SphereEnergy energy, const detail::RestTriangle& rest, const Vec3& a, const Vec3& b,
+                       const Vec3& c) {
+  detail::Vector9 gradient;
+  detail::Matrix9 hessian;
+  const double value = detail::triangle_energy(energy, rest, a, b, c, gradient, hessian);
+  EXPECT_NEAR(value, detail::triangle_energy(energy, rest, a, b, c), 1e-14 * std::abs(value)) << to_string(energy);
+  auto at = [&](const detail::Vector9& x, detail::Vector9& g) {
+    detail::Matrix9 h;
+    return detail::triangle_energy(energy, rest, {x[0], x[1], x[2]}, {x[3], x[4], x[5]}, {x[6], x[7], x[8]}, g, h);
+  };
+  detail::Vector9 x;
+  x << a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2];
+  const double step = 1e-7;
+  const double gradient_scale = std::max(1e-300, gradient.cwiseAbs().maxCoeff());
+  const double hessian_scale = std::max(1e-300, hessian.cwiseAbs().maxCoeff());
+  for (int i = 0; i < 9; ++i) {
+    detail::Vector9 up = x, down = x, g_up, g_down;
+    up[i] += step;
+    down[i] -= step;
+    const double numeric = (at(up, g_up) - at(down, g_down)) / (2 * step);
+    EXPECT_NEAR(gradient[i], numeric, 1e-5 * gradient_scale) << to_string(energy) << " gradient " << i;
+    const detail::Vector9 column = (g_up - g_down) / (2 * step);
+    for (int j = 0; j < 9; ++j)
+      EXPECT_NEAR(hessian(j, i), column[j], 1e-5 * hessian_scale) << to_string(energy) << " hessian " << j << "," << i;
+  }
+}
+
+TEST(ObjectiveEnergy, GradientsAndHessiansMatchFiniteDifferences) {
+  const auto rest = detail::rest_triangle({0, 0, 0}, {1, 0.1, 0}, {0.3, 0.8, 0.1}, 0.02, 1e-3);
+  // A triangle larger than its target, one smaller (both sides of ln(S/A) = 0 and of its convexity).
+  const Vec3 a = unit(0.1, 0.05, 1), b = unit(0.25, 0.02, 1), c = unit(0.12, 0.22, 1);
+  const Vec3 d = unit(0.1, 0.05, 1), e = unit(0.13, 0.06, 1), f = unit(0.11, 0.09, 1);
+  for (const auto energy : {SphereEnergy::kLogAreaRatio, SphereEnergy::kConformal}) {
+    check_derivatives(energy, rest, a, b, c);
+    check_derivatives(energy, rest, d, e, f);
+  }
+}
+
+TEST(ObjectiveEnergy, MinimaAndBarriers) {
+  // An equilateral rest triangle and its image of the same shape and area (the target).
+  const Vec3 a = unit(0, 0, 1), b = unit(0.01, 0, 1), c = unit(0.005, 0.005 * std::sqrt(3.0), 1);
+  const double area = detail::half_det(a, b, c);
+  const auto rest = detail::rest_triangle({0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0}, area, 1e-3);
+  // ln(S/A) = 0 and N/S = 2 at a similarity: the area energy is the shape term's 2·w·A.
+  EXPECT_NEAR(detail::log_area_ratio(rest, a, b, c), 2 * kShapeWeight * area, 1e-4 * area);
+  // The conformal energy is 2A at any similarity, whatever its scale (but for the collapse barrier).
+  const Vec3 b2 = unit(0.001, 0, 1), c2 = unit(0.0005, 0.0005 * std::sqrt(3.0), 1);
+  EXPECT_NEAR(detail::conformal(rest, a, b, c), 2 * area, 1e-4 * area);
+  EXPECT_NEAR(detail::conformal(rest, a, b2, c2), 2 * area, 1e-3 * area);
+  // A sheared image of the same area costs more.
+  const Vec3 sheared = unit(0.015, 0.005 * std::sqrt(3.0), 1);
+  EXPECT_GT(detail::conformal(rest, a, b, sheared), 2.1 * area);
+  for (const auto energy : {SphereEnergy::kLogAreaRatio, SphereEnergy::kConformal}) {
+    EXPECT_EQ(detail::triangle_energy(energy, rest, a, c, b), INFINITY) << to_string(energy);  // folded
+    EXPECT_EQ(detail::triangle_energy(energy, rest, a, a, b), INFINITY) << to_string(energy);  // flat
+  }
+}
+
+// Mean |ln ratio| of the triangles' shares of the sphere to their shares of the surface.
+double mean_log_area_ratio(const Mesh& surface, const std::vector<Vec3>& sphere) {
+  double total = 0, sum = 0;
+  for (const auto& t : surface.triangles)
+    total += triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]);
+  for (const auto& t : surface.triangles) {
+    const double share =
+        triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]) / total;
+    sum += std::abs(
+        std::log(signed_solid_angle(sphere[t[0]], sphere[t[1]], sphere[t[2]]) / (4 * std::numbers::pi) / share));
+  }
+  return sum / static_cast<double>(surface.triangles.size());
+}
+
+// Mean |angle on the sphere's chord triangles - angle on the surface|, in degrees.
+double mean_angle_error(const Mesh& surface, const std::vector<Vec3>& sphere) {
+  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    return std::atan2(norm(cross(q - p, r - p)), dot(q - p, r - p));
+  };
+  double sum = 0;
+  for (const auto& t : surface.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto i = t[k], j = t[(k + 1) % 3], l = t[(k + 2) % 3];
+      sum += std::abs(angle(sphere[i], sphere[j], sphere[l]) -
+                      angle(surface.positions[i], surface.positions[j], surface.positions[l]));
+    }
+  return sum / (3.0 * static_cast<double>(surface.triangles.size())) * 180 / std::numbers::pi;
+}
+
+// The icosphere as the map of a perturbed, stretched copy of itself: a valid start far from every optimum.
+TEST(ObjectiveOptimization, EachEnergyDescendsAndStaysValid) {
+  const Mesh ico = make_icosphere(3);
+  Mesh rest = perturb_vertices(ico, 0.15, 7);
+  for (auto& p : rest.positions) p = Vec3{2.5 * p[0], p[1], 0.6 * p[2]};
+  for (const auto energy : {SphereEnergy::kSymmetricDirichlet, SphereEnergy::kLogAreaRatio, SphereEnergy::kConformal}) {
+    auto points = ico.positions;
+    std::vector<char> fixed(points.size(), 0);
+    fixed[0] = 1;
+    SphereOptimizeOptions options;
+    options.energy = energy;
+    const auto report = optimize_on_sphere(rest.positions, rest.triangles, points, fixed, options);
+    EXPECT_GT(report.iterations, 0) << to_string(energy);
+    EXPECT_LT(report.energy_after, report.energy_before) << to_string(energy);
+    EXPECT_TRUE(certify_sphere_map(rest, points).certified()) << to_string(energy);
+    EXPECT_EQ(points[0], ico.positions[0]) << to_string(energy);
+    for (const auto& p : points) EXPECT_NEAR(norm(p), 1, 1e-14);
+    if (energy == SphereEnergy::kLogAreaRatio)
+      EXPECT_LT(mean_log_area_ratio(rest, points), 0.2 * mean_log_area_ratio(rest, ico.positions));
+    if (energy == SphereEnergy::kConformal)
+      EXPECT_LT(mean_angle_error(rest, points), 0.5 * mean_angle_error(rest, ico.positions));
+  }
+}
+
+Mesh prepared(const Mesh& mesh) { return prepare_mesh(mesh).mesh; }
+
+// map_to_sphere with each objective: certified, the optimization reported, and the distortion the
+// objective is for lower than the paper's map's.
+void check_objectives(const Mesh& mesh, const std::string& what) {
+  const SphereMap paper = map_to_sphere(mesh);
+  ASSERT_TRUE(paper.certificate.certified()) << what;
+  EXPECT_EQ(paper.diagnostics.objective.outcome, ObjectiveOutcome::kNone) << what;
+  for (const auto objective : {MapObjective::kArea, MapObjective::kConformal, MapObjective::kBalanced}) {
+    MapOptions options;
+    options.objective = objective;
+    const SphereMap map = map_to_sphere(mesh, options);
+    const auto& report = map.diagnostics.objective;
+    const std::string name = what + " " + to_string(objective);
+    EXPECT_TRUE(map.certificate.certified()) << name;
+    EXPECT_EQ(report.outcome, ObjectiveOutcome::kOptimized) << name;
+    EXPECT_GT(report.optimization.iterations, 0) << name;
+    EXPECT_LT(report.optimization.energy_after, report.optimization.energy_before) << name;
+    std::int64_t negative = 0;
+    for (const auto& t : mesh.triangles)
+      negative += orientation_sign(map.sphere[t[0]], map.sphere[t[1]], map.sphere[t[2]]) <= 0;
+    EXPECT_EQ(negative, 0) << name;
+    // θ is still measured from the north pole, which stayed put.
+    EXPECT_NEAR(map.theta[map.poles.north], 0, 1e-12) << name;
+    if (objective == MapObjective::kArea)
+      EXPECT_LT(mean_log_area_ratio(mesh, map.sphere), 0.5 * mean_log_area_ratio(mesh, paper.sphere)) << name;
+    if (objective == MapObjective::kConformal)
+      EXPECT_LT(mean_angle_error(mesh, map.sphere), 0.5 * mean_angle_error(mesh, paper.sphere)) << name;
+  }
+}
+
+TEST(MapObjectives, PerturbedEllipsoid) {
+  check_objectives(prepared(perturb_vertices(make_ellipsoid(3, 2.0, 1.0, 0.5), 0.05, 3)), "ellipsoid");
+}
+
+TEST(MapObjectives, Dumbbell) { check_objectives(prepared(make_dumbbell(3.0, 0.4, 24, 16)), "dumbbell"); }
+
+TEST(MapObjectives, CoarseBentTube) {
+  // A hard case: a 4-segment U tube, where the plain map and its repair collapse limbs.
+  check_objectives(prepared(make_bent_tube(TubeBend::kU, 4, 30)), "U tube");
+}
+
+TEST(MapObjectives, NamesParseAndBadNamesAreRefused) {
+  for (const auto objective :
+       {MapObjective::kPaper, MapObjective::kArea, MapObjective::kConformal, MapObjective::kBalanced})
+    EXPECT_EQ(parse_map_objective(to_string(objective)), objective);
+  EXPECT_THROW(parse_map_objective("equal-area"), InputError);
+}
+
+}  // namespace
+}  // namespace spheremap
