@@ -5,6 +5,7 @@
 #include "blas_kernels.hpp"
 #include "commands.hpp"
 #include "spheremap/error.hpp"
+#include "spheremap/text.hpp"
 
 int main(int argc, char** argv) {
   spheremap::cli::use_blas_kernels_for_this_cpu(argv);
@@ -38,10 +39,10 @@ int main(int argc, char** argv) {
       if (*command.app) return command.run();
     return static_cast<int>(spheremap::ExitCode::kUsage);
   } catch (const spheremap::Error& e) {
-    std::cerr << "spheremap: error: " << e.what() << "\n";
+    std::cerr << "spheremap: error: " << spheremap::valid_utf8(e.what()) << "\n";
     return static_cast<int>(e.code());
   } catch (const std::exception& e) {
-    std::cerr << "spheremap: internal error: " << e.what() << "\n";
+    std::cerr << "spheremap: internal error: " << spheremap::valid_utf8(e.what()) << "\n";
     return 4;
   }
 }
