@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "spheremap/pipeline/batch.hpp"
 #include "spheremap/error.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -83,15 +84,16 @@ class Reporter {
       : inputs_(inputs), weights_(weights), quiet_(quiet), terminal_(::isatty(STDERR_FILENO) == 1) {}
 
   void finished(const BatchInputOutcome& outcome, const BatchProgress& progress) {
-    const bool problem = std::any_of(outcome.statuses.begin(), outcome.statuses.end(),
-                                     [](RunStatus s) { return s != RunStatus::kOk; });
+    const bool problem = !outcome.warnings.empty() || std::any_of(outcome.statuses.begin(), outcome.statuses.end(),
+                                                                  [](RunStatus s) { return s != RunStatus::kOk; });
     if (quiet_ && !problem) return;
     if (terminal_ && !problem) {
       tick(progress);
       return;
     }
     std::string line = fmt::format("[{}/{}] {} -> {}: ", progress.already_done + progress.finished, progress.inputs,
-                                   inputs_[outcome.index].path.string(), inputs_[outcome.index].name);
+                                   valid_utf8(inputs_[outcome.index].path.string()),
+                                   valid_utf8(inputs_[outcome.index].name));
     std::set<RunStatus> distinct(outcome.statuses.begin(), outcome.statuses.end());
     if (distinct.size() == 1) {
       line += to_string(outcome.statuses.front());
@@ -99,8 +101,10 @@ class Reporter {
       for (std::size_t k = 0; k < weights_.size(); ++k)
         line += fmt::format("{}{} {}", k ? ", " : "", to_string(weights_[k]), to_string(outcome.statuses[k]));
     }
-    if (!outcome.message.empty()) line += fmt::format(" (exit {}): {}", outcome.exit_code, outcome.message);
+    if (!outcome.message.empty())
+      line += fmt::format(" (exit {}): {}", outcome.exit_code, valid_utf8(outcome.message));
     else if (distinct.count(RunStatus::kNotCertified)) line += " — NOT CERTIFIED, written anyway (see report.json)";
+    for (const auto& warning : outcome.warnings) line += fmt::format("; warning: {}", valid_utf8(warning));
     line += fmt::format(" [{:.1f} s]", outcome.seconds);
     clear_bar();
     std::cerr << line << "\n";

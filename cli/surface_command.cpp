@@ -11,10 +11,9 @@
 namespace spheremap::cli {
 namespace {
 
-// What `surface` prints: sizes, components, simplification, warnings, repair, timings.
+// What `surface` prints: sizes, components, simplification, repair, timings (warnings: on stderr).
 void print_surface(const std::string& output, const MapJobOptions& options, const MolecularSurface& result,
-                   const HandleRepairReport& repair, const SimplifyReport& simplification,
-                   const StructureReport& structure) {
+                   const HandleRepairReport& repair, const SimplifyReport& simplification) {
   const Mesh& surface = result.mesh;
   double area = 0;
   for (const auto& c : result.components) area += c.area;
@@ -35,7 +34,6 @@ void print_surface(const std::string& output, const MapJobOptions& options, cons
                              simplification.mean_edge_before, simplification.mean_edge_after,
                              simplification.area_before, simplification.area_after,
                              simplification.max_vertex_distance);
-  for (const auto& warning : structure.warnings) std::cout << "  warning: " << warning << "\n";
   if (repair.method != RepairMethod::kNone)
     std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
                              "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
@@ -72,6 +70,8 @@ struct SurfaceCommand {
   int run() {
     structure.apply(options);
     const Molecule molecule = read_structure(input, options.structure);
+    for (const auto& warning : molecule.report.warnings)
+      std::cerr << fmt::format("spheremap: warning: {}: {}\n", input, warning);  // even with -q
     HandleRepairReport repair;
     MolecularSurface result;
     try {
@@ -85,7 +85,7 @@ struct SurfaceCommand {
     PlyWriteOptions ply;
     ply.ascii = options.ascii;
     write_ply(output, result.mesh, ply);
-    if (!quiet) print_surface(output, options, result, repair, simplification, molecule.report);
+    if (!quiet) print_surface(output, options, result, repair, simplification);
     return 0;
   }
 };

@@ -1,5 +1,4 @@
 // The translation unit that reads with gemmi (header-only and slow to compile); pdb_writer.cpp writes with it.
-#include <gemmi/gz.hpp>
 #include <gemmi/mmread.hpp>
 
 #include <algorithm>
@@ -15,6 +14,8 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/molecule/structure.hpp"
+#include "spheremap/text.hpp"
+#include "structure_text.hpp"
 
 namespace spheremap {
 namespace {
@@ -67,10 +68,19 @@ void classify(RawAtom& raw) {
                                 raw.atom.residue_name);
 }
 
+// Names from the file go into JSON, CSV and HTML outputs: valid UTF-8 only (a stray byte becomes U+FFFD;
+// an insertion code, one byte, becomes '?').
+void make_text_valid(Atom& atom) {
+  for (std::string* text : {&atom.name, &atom.element, &atom.residue_name, &atom.chain})
+    if (!is_valid_utf8(*text)) *text = valid_utf8(*text);
+  const auto code = static_cast<unsigned char>(atom.insertion_code);
+  if (code >= 0x7F || (code < 0x20 && code != 0)) atom.insertion_code = '?';
+}
+
 // mmCIF files written by other programs (PyMOL's 1bna.cif) may lack the columns gemmi's structure
 // reader needs (auth_seq_id); read the _atom_site table directly with gemmi's CIF parser.
-std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int model, std::int64_t& models_in_file) {
-  gemmi::cif::Document document = gemmi::cif::read(gemmi::MaybeGzipped(path.string()));
+std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, gemmi::cif::Document& document,
+                                          int model, std::int64_t& models_in_file) {
   if (document.blocks.empty()) throw InputError(fmt::format("{}: the mmCIF file has no data block", path.string()));
   auto table = document.blocks.front().find(
       "_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?group_PDB", "?id", "?type_symbol", "?label_atom_id",
@@ -118,11 +128,22 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, int
   return atoms;
 }
 
-std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, int model, std::int64_t& models_in_file,
-                                     std::vector<std::string>& warnings) {
+// The structure in `text` (the file's bytes, inflated), as PDB or mmCIF by the file's extension; the
+// document too for mmCIF (read_atom_site_table reads it again when gemmi finds no model).
+gemmi::Structure parse_with_gemmi(const std::filesystem::path& path, const std::string& text,
+                                  std::optional<gemmi::cif::Document>& document) {
+  const std::string extension = lower_extension(path);
+  if (extension == ".pdb" || extension == ".ent") return gemmi::read_pdb_from_memory(text.data(), text.size(), path.string());
+  document = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
+  return gemmi::make_structure(*document);
+}
+
+std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, const std::string& text, int model,
+                                     std::int64_t& models_in_file, std::vector<std::string>& warnings) {
   gemmi::Structure structure;
+  std::optional<gemmi::cif::Document> document;
   try {
-    structure = gemmi::read_structure(gemmi::MaybeGzipped(path.string()));
+    structure = parse_with_gemmi(path, text, document);
   } catch (const std::exception& first_error) {
     // Old PDB files carry an ID and line numbers in columns 73-80, where the element and charge are now
     // (1hpv.pdb of pymol-data, for one): read them again up to column 72, elements then come from names.
@@ -131,7 +152,7 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, int mode
       try {
         gemmi::PdbReadOptions up_to_72;
         up_to_72.max_line_length = 72;
-        structure = gemmi::read_pdb(gemmi::MaybeGzipped(path.string()), up_to_72);
+        structure = gemmi::read_pdb_from_memory(text.data(), text.size(), path.string(), up_to_72);
         warnings.push_back(fmt::format("columns 73-80 ignored (old-style PDB: {}); elements taken from atom names",
                                        first_error.what()));
         read = true;
@@ -141,11 +162,10 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, int mode
     if (!read)
       throw InputError(fmt::format("{}: cannot read the structure: {}. Check that it is a PDB or mmCIF file and not "
                                    "truncated",
-                                   path.string(), first_error.what()));
+                                   path.string(), valid_utf8(first_error.what())));
   }
   models_in_file = static_cast<std::int64_t>(structure.models.size());
-  if (structure.models.empty() && (lower_extension(path) == ".cif" || lower_extension(path) == ".mmcif"))
-    return read_atom_site_table(path, model, models_in_file);
+  if (structure.models.empty() && document) return read_atom_site_table(path, *document, model, models_in_file);
   if (structure.models.empty())
     throw InputError(fmt::format("{}: the file contains no atoms (no model); is it a structure file?", path.string()));
   if (model < 1 || model > static_cast<int>(structure.models.size()))
@@ -186,14 +206,14 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, int mode
 
 // PQR (pdb2pqr, APBS): whitespace-separated ATOM/HETATM records whose last five fields are
 // x y z charge radius; the chain column is optional.
-std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("{}: cannot open the file; check the path and permissions", path.string()));
+std::vector<RawAtom> read_pqr(const std::filesystem::path& path, const std::string& text) {
+  std::istringstream in(text);
   std::vector<RawAtom> atoms;
   std::string line;
   int line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.rfind("ATOM", 0) != 0 && line.rfind("HETATM", 0) != 0) continue;
     std::istringstream stream(line);
     std::vector<std::string> fields;
@@ -201,7 +221,7 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
     auto fail = [&] {
       return InputError(fmt::format("{}:{}: not a PQR atom record (expected 'ATOM serial name residue [chain] number x y "
                                     "z charge radius'): '{}'",
-                                    path.string(), line_number, line));
+                                    path.string(), line_number, molecule_detail::quoted_line(line)));
     };
     if (fields.size() < 10 || fields.size() > 12) throw fail();
     auto number = [&](const std::string& text) {
@@ -214,7 +234,7 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
     raw.atom.position = {number(fields[n - 5]), number(fields[n - 4]), number(fields[n - 3])};
     raw.atom.charge = number(fields[n - 2]);
     raw.atom.radius = number(fields[n - 1]);
-    if (!(raw.atom.radius >= 0 && raw.atom.radius < 10)) throw fail();
+    if (!std::isfinite(*raw.atom.charge) || !(raw.atom.radius >= 0 && raw.atom.radius < 10)) throw fail();
     raw.atom.serial = static_cast<std::int32_t>(number(fields[1]));
     raw.atom.name = fields[2];
     raw.atom.residue_name = fields[3];
@@ -245,24 +265,24 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path) {
 // of an unknown format, holds no atoms, or lacks the model.
 std::vector<RawAtom> read_raw_atoms(const std::filesystem::path& path, const StructureOptions& options,
                                     StructureReport& report) {
-  if (!std::filesystem::exists(path))
-    throw InputError(fmt::format("{}: no such file; check the path", path.string()));
-  if (std::filesystem::is_empty(path)) throw InputError(fmt::format("{}: the file is empty", path.string()));
+  molecule_detail::StructureText text = molecule_detail::read_structure_text(path);
   const std::string extension = lower_extension(path);
   const bool pqr = extension == ".pqr";
   if (!pqr && extension != ".pdb" && extension != ".ent" && extension != ".cif" && extension != ".mmcif")
     throw InputError(fmt::format("{}: unknown structure format '{}'; spheremap reads .pdb, .ent, .cif, .mmcif (also "
                                  ".gz) and .pqr",
                                  path.string(), extension));
+  report.warnings = std::move(text.warnings);
   std::vector<RawAtom> raw;
   if (pqr) {
-    raw = read_pqr(path);
+    raw = read_pqr(path, text.bytes);
     report.models_in_file = 1;
     if (options.model != 1)
       throw InputError(fmt::format("{}: --model {} does not exist: PQR files hold one model", path.string(), options.model));
   } else {
-    raw = read_with_gemmi(path, options.model, report.models_in_file, report.warnings);
+    raw = read_with_gemmi(path, text.bytes, options.model, report.models_in_file, report.warnings);
   }
+  for (auto& a : raw) make_text_valid(a.atom);
   report.atoms_in_model = static_cast<std::int64_t>(raw.size());
   if (raw.empty()) throw InputError(fmt::format("{}: the file contains no atoms", path.string()));
   return raw;
@@ -389,6 +409,11 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
     molecule.atoms.push_back(std::move(a.atom));
   }
   radii.add_warnings(report.warnings);
+  for (auto& warning : report.warnings) warning = valid_utf8(warning);  // some quote the file
+  if (options.strict && !report.warnings.empty())
+    throw InputError(fmt::format("{}: --strict: {}. Fix the file, or leave out --strict to map it with {}",
+                                 path.string(), fmt::join(report.warnings, "; "),
+                                 report.warnings.size() == 1 ? "this warning" : "these warnings"));
   if (molecule.atoms.size() < 2)
     throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
                                  "at least two. Check --chains and --model, or keep more atoms (--keep-waters, "

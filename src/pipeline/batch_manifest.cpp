@@ -90,6 +90,8 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
     json["objective"] = to_string(job.map.objective);
     json["objective_max_iterations"] = job.map.objective_max_iterations;
   }
+  // Only when set: a batch.json written before --strict existed still matches the same options.
+  if (job.structure.strict) json["structure"]["strict"] = true;
   return json;
 }
 

@@ -129,6 +129,8 @@ BatchInputOutcome run_batch_input(const fs::path& root, const BatchInput& input,
       outcome.exit_code = state.exit_code;
       outcome.message = state.message;
     }
+    if (outcome.warnings.empty() && state.report && state.report->structure)
+      outcome.warnings = state.report->structure->warnings;
   }
   outcome.seconds = timer.seconds();
   return outcome;

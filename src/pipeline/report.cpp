@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap {
 namespace {
@@ -327,7 +328,7 @@ nlohmann::json distortion_json(const DistortionMetrics& m) {
 nlohmann::json make_report(const MapJobResult& result, const MapJobOptions& options) {
   return {
       {"spheremap_version", "0.1.0"},
-      {"input", result.input.string()},
+      {"input", valid_utf8(result.input.string())},
       {"options", options_json(result, options)},
       {"structure", structure_json(result, options)},
       {"simplification", simplification_json(result, options)},
@@ -429,6 +430,8 @@ ReportStructure read_structure_part(const ReportFields& f) {
   s.atoms = f.integer({"structure", "atoms"});
   s.probe = f.number({"structure", "probe"});
   s.grid = f.number({"structure", "grid"});
+  for (const auto& warning : f.array({"structure", "warnings"}))
+    if (warning.is_string()) s.warnings.push_back(warning.get<std::string>());
   ReportTopologyRepair& r = s.topology_repair;
   r.method = f.text({"structure", "topology_repair", "method"});
   r.rounds = f.integer({"structure", "topology_repair", "rounds"});

@@ -11,6 +11,7 @@
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/pipeline/run_folder.hpp"
+#include "spheremap/text.hpp"
 #include "detail.hpp"
 
 namespace spheremap {
@@ -105,7 +106,7 @@ void set_report_columns(Json& row, const ReportSummary& r) {
 
 std::string csv_field(const Json& value) {
   if (value.is_null()) return {};
-  std::string text = value.is_string() ? value.get<std::string>() : dump(value);
+  std::string text = value.is_string() ? valid_utf8(value.get<std::string>()) : dump(value);
   const bool quote = text.find_first_of(",\"\r\n") != std::string::npos ||
                      (!text.empty() && (text.front() == ' ' || text.back() == ' ' || text.front() == '\t' ||
                                         text.back() == '\t'));
@@ -148,20 +149,24 @@ Json summary_row(const BatchInput& input, Weights weights, const fs::path& root,
   Json row = Json::object();
   for (const auto& column : summary_columns()) row[column] = nullptr;
   const RunFolder state = read_run_folder(folder);
-  row["input"] = input.path.string();
-  row["output"] = folder.lexically_relative(root).generic_string();
+  row["input"] = valid_utf8(input.path.string());
+  row["output"] = valid_utf8(folder.lexically_relative(root).generic_string());
   row["weights"] = to_string(weights);
   row["status"] = to_string(state.status);
   if (state.status == RunStatus::kPending) return row;
   row["exit_code"] = state.exit_code;
   if (state.status == RunStatus::kError) {
-    row["message"] = state.message;
+    row["message"] = valid_utf8(state.message);
     return row;
   }
   const ReportSummary& r = *state.report;
+  std::vector<std::string> message;
   if (state.status == RunStatus::kNotCertified)
-    row["message"] = fmt::format("NOT certified: {} folded, {} collapsed triangles, coverage {}", r.certificate.folded,
-                                 r.certificate.collapsed, dump(number(r.certificate.coverage)));
+    message.push_back(fmt::format("NOT certified: {} folded, {} collapsed triangles, coverage {}",
+                                  r.certificate.folded, r.certificate.collapsed, dump(number(r.certificate.coverage))));
+  if (r.structure)
+    for (const auto& warning : r.structure->warnings) message.push_back("warning: " + valid_utf8(warning));
+  if (!message.empty()) row["message"] = fmt::format("{}", fmt::join(message, "; "));
   set_report_columns(row, r);
   if (state.peak_rss_mb) row["peak_rss_mb"] = *state.peak_rss_mb;
   return row;

@@ -46,6 +46,9 @@ struct StructureOptions {
   /// Element -> radius (Å) replacing the Bondi table, e.g. from load_radius_table. Ignored for PQR files,
   /// whose radius column is used.
   std::optional<std::map<std::string, double>> radii;
+  /// Every warning about the file (StructureReport::warnings: a truncated last line, unknown elements,
+  /// ignored columns, ...) is an error instead.
+  bool strict = false;
 };
 
 struct StructureReport {
@@ -56,7 +59,9 @@ struct StructureReport {
   std::int64_t hetero_removed = 0;
   std::int64_t other_chains_removed = 0;
   std::int64_t alternate_locations_removed = 0;  // atoms of the less occupied alternate conformations
-  std::vector<std::string> warnings;             // e.g. unknown elements and the radius used
+  /// About the file (valid UTF-8): signs of truncation (a last line without its line break, a last atom
+  /// record shorter than the others), unknown elements and the radius used, ignored columns.
+  std::vector<std::string> warnings;
 };
 
 struct Molecule {
@@ -70,9 +75,14 @@ struct Molecule {
 /// PQR's, whose atoms of radius 0 count for charge and make no surface), no waters, all other HETATM groups and all chains; radii from Bondi (1964) per element unless
 /// options.radii or the PQR file say otherwise; unknown elements get kUnknownElementRadius and a
 /// warning naming them.
-/// Throws InputError naming the file, the problem and the fix when the file is missing, unreadable,
-/// empty, not a structure, has a non-finite or absurd coordinate (beyond ±1e5 Å), has fewer than two
-/// atoms after filtering, or the model / chains asked for do not exist.
+/// A .gz file is inflated whole and must be complete (CRC and length checked). Signs of a truncated file
+/// (a last line without its line break, a last atom record shorter than the others) are warnings in the
+/// report; options.strict makes every warning an error. Text read from the file (names, chains,
+/// elements) is made valid UTF-8 (valid_utf8).
+/// Throws InputError naming the file, the problem and the fix when the file is missing, a folder,
+/// unreadable, empty, not a structure, a truncated or corrupt .gz, has a non-finite or absurd coordinate
+/// (beyond ±1e5 Å) or a non-finite PQR charge, has fewer than two atoms after filtering, or the model /
+/// chains asked for do not exist; with options.strict, when there is a warning.
 Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options = {});
 
 }  // namespace spheremap

@@ -40,7 +40,7 @@ struct BatchOptions {
 };
 
 /// The options that decide the outputs, as stored in root/batch.json (weights, solver, repair, collapse
-/// floor, welding, component, ASCII, structure selection, radii, probe, grid, keep_topology,
+/// floor, welding, component, ASCII, structure selection, radii, strict, probe, grid, keep_topology,
 /// simplification). Does not throw (but std::bad_alloc).
 nlohmann::ordered_json batch_options_json(const BatchOptions& options);
 
@@ -50,6 +50,7 @@ struct BatchInputOutcome {
   std::vector<RunStatus> statuses;          // per weighting (all of them, including runs done earlier)
   int exit_code = 0;                        // of the error, when an error happened
   std::string message;                      // the error's message
+  std::vector<std::string> warnings;        // about the input file (report.json's structure.warnings)
   double seconds = 0;                       // wall clock of this input in this session
 };
 

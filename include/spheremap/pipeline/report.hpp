@@ -42,6 +42,7 @@ struct ReportTopologyRepair {
 struct ReportStructure {
   std::int64_t atoms = 0;
   double probe = 0, grid = 0;
+  std::vector<std::string> warnings;  // `structure.warnings`: about the input file
   ReportTopologyRepair topology_repair;
 };
 
