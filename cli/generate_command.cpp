@@ -1,16 +1,23 @@
 // spheremap generate SHAPE -o OUTPUT.ply: generated closed genus-0 meshes.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "spheremap/error.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/shapes/hard_cases.hpp"
 #include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap::cli {
 namespace {
+
+constexpr double kMaxVertices = 2e7;  // about 1.5 GB while written: more is a mistake, not a test mesh
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 struct GenerateCommand {
   static constexpr const char* kName = "generate";
@@ -28,12 +35,14 @@ struct GenerateCommand {
         ->check(CLI::IsMember({"icosphere", "ellipsoid", "dumbbell", "cube", "stacked", "tube-u", "tube-c", "spiky"}));
     add_output_option(command, output, "Output .ply file");
     command->add_option("--level", level, "icosphere/ellipsoid/spiky: subdivision level (10*4^level+2 vertices)")
-        ->check(CLI::Range(0, 10));
+        ->check(CLI::Range(0, 10));  // level 10: 10.5 million vertices
     command->add_option("--stretch", stretch, "ellipsoid: length of the z axis (x and y are 1)")
-        ->check(CLI::PositiveNumber);
-    command->add_option("--n", cube_n, "cube: squares per face edge (6n^2+2 vertices)")->check(CLI::Range(1, 10000));
-    command->add_option("--separation", separation, "dumbbell: distance between the two unit spheres' centres");
-    command->add_option("--neck", neck, "dumbbell: radius of the neck (0..1)");
+        ->check(finite_number(0, 1e6, LowEnd::kExcluded));
+    command->add_option("--n", cube_n, "cube: squares per face edge (6n^2+2 vertices)")->check(CLI::Range(1, 1800));
+    command->add_option("--separation", separation, "dumbbell: distance between the two unit spheres' centres")
+        ->check(finite_number(0, 1e6));
+    command->add_option("--neck", neck, "dumbbell: radius of the neck (0..1)")
+        ->check(finite_number(0, 1, LowEnd::kExcluded));
     command->add_option("--rings", rings, "dumbbell, tube-u, tube-c: vertex rings along the axis")
         ->check(CLI::Range(2, 100000));
     command->add_option("--segments", segments, "dumbbell, tube-u, tube-c: vertices per ring")
@@ -42,23 +51,43 @@ struct GenerateCommand {
                         "stacked: vertices (a tetrahedron with vertices inserted into triangles)")
         ->check(CLI::Range(4, 10000000));
     command->add_option("--nesting", nesting, "stacked: probability of inserting into a triangle just made (depth)")
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(finite_number(0, 1));
     command->add_option("--spikes", spikes, "spiky: thin tubes grown from vertices of the icosphere --level")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, 100000));
     command->add_option("--length", length, "spiky: how far the spikes reach beyond the unit sphere")
-        ->check(CLI::PositiveNumber);
+        ->check(finite_number(0, 1e6, LowEnd::kExcluded));
     command->add_option("--spike-rings", spike_rings, "spiky: rings of vertices along each spike")
         ->check(CLI::Range(1, 10000));
     command->add_option("--flips", flips, "probability of random edge flips (creates degree-3 vertices)")
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(finite_number(0, 1));
     command->add_option("--perturb", perturb, "random vertex offsets, in mean edge lengths")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finite_number(0, kUnbounded));
     command->add_option("--seed", seed, "random seed for --flips, --perturb, stacked and spiky");
     command->add_flag("--ascii", ascii, "ASCII PLY");
     add_quiet_flag(command, quiet);
   }
 
+  // The vertices asked for, before the mesh is made (spiky: its sphere only).
+  double vertices_asked() const {
+    if (shape == "dumbbell" || shape == "tube-u" || shape == "tube-c") return static_cast<double>(rings) * segments + 2;
+    if (shape == "cube") return 6.0 * cube_n * cube_n + 2;
+    if (shape == "stacked") return vertices;
+    return 10 * std::pow(4.0, shape == "spiky" ? std::min(level, 6) : level) + 2;
+  }
+
   int run() const {
+    if (vertices_asked() > kMaxVertices)
+      throw InputError(fmt::format("generate {}: {:.3g} vertices asked for, more than the {:.0e} generate writes; "
+                                   "choose a smaller size",
+                                   shape, vertices_asked(), kMaxVertices));
+    try {
+      return generate();
+    } catch (const std::invalid_argument& e) {  // a combination of options the shape does not take
+      throw InputError(fmt::format("generate {}: {}", shape, e.what()));
+    }
+  }
+
+  int generate() const {
     Mesh mesh = shape == "icosphere"   ? make_icosphere(level)
                 : shape == "ellipsoid" ? make_ellipsoid(level, 1, 1, stretch)
                 : shape == "dumbbell"  ? make_dumbbell(separation, neck, rings, segments)

@@ -2,8 +2,11 @@
 #include "options.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -14,6 +17,8 @@
 namespace spheremap::cli {
 namespace {
 
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
 void add_mesh_edge_option(CLI::App* cmd, double& mesh_edge, PresetScope scope) {
   const char* text =
       scope == PresetScope::kMap
@@ -22,7 +27,7 @@ void add_mesh_edge_option(CLI::App* cmd, double& mesh_edge, PresetScope scope) {
             "given, in the mesh's units)"
           : "Write the surface simplified to well-shaped triangles with edges of about this length in Å, a subset "
             "of the contour's vertices (default: the contour as it is; spheremap map uses 1 Å)";
-  cmd->add_option("--mesh-edge", mesh_edge, text)->check(CLI::NonNegativeNumber);
+  cmd->add_option("--mesh-edge", mesh_edge, text)->check(finite_number(0, kUnbounded));
 }
 
 std::string preset_help(PresetScope scope) {
@@ -41,10 +46,32 @@ void add_equalizing_rounds_option(CLI::App* command, MapOptions& options) {
                       "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets "
                       "more evenly, each kept only if the map stays certified and its area distortion drops (default "
                       "12; 0: faster, the first certified map)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000));
 }
 
 }  // namespace
+
+CLI::Validator finite_number(double low, double high, LowEnd low_end, const std::string& unit) {
+  const bool open_low = low_end == LowEnd::kExcluded;
+  std::string expected = high == kUnbounded
+                             ? fmt::format("a number {} {}{}", open_low ? "above" : "of at least", low, unit)
+                             : fmt::format("a number from {}{} to {}{}{}", low, unit, high, unit,
+                                           open_low ? fmt::format(" (not {})", low) : "");
+  auto check = [=](std::string& text) -> std::string {
+    double value = 0;
+    std::string_view number = text;
+    if (number.size() > 1 && number.front() == '+') number.remove_prefix(1);
+    const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), value);
+    if (error != std::errc() || end != number.data() + number.size() || number.empty())
+      return fmt::format("'{}' is not a number; expected {}", text, expected);
+    if (!std::isfinite(value)) return fmt::format("{} is not a finite number; expected {}", text, expected);
+    if (value < low || (open_low && value == low) || value > high)
+      return fmt::format("{} is out of range; expected {}", text, expected);
+    return {};
+  };
+  return CLI::Validator(check, expected);
+}
+
 
 void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, PresetScope scope) {
   command = cmd;
@@ -54,10 +81,11 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, PresetScope
   cmd->add_option("--mesh-tolerance", mesh_tolerance,
                   "With simplification: each removed vertex stays within this distance of the triangles that replace "
                   "it (default: a tenth of --mesh-edge)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--probe", options.surface.probe, "Probe radius in Å (default 1.4)")->check(CLI::PositiveNumber);
+      ->check(finite_number(0, kUnbounded, LowEnd::kExcluded));
+  cmd->add_option("--probe", options.surface.probe, "Probe radius in Å (default 1.4; up to 100)")
+      ->check(finite_number(0, 100, LowEnd::kExcluded, " Å"));
   cmd->add_option("--grid", options.surface.grid, "Grid spacing of the molecular surface in Å (default 0.5)")
-      ->check(CLI::Range(0.05, 5.0));
+      ->check(finite_number(0.05, 5.0, LowEnd::kIncluded, " Å"));
   cmd->add_option("--model", options.structure.model, "Model to read: 1 = the first (default), N = the N-th")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--chains", chains, "Chains to keep, comma-separated (default: all)");
@@ -70,6 +98,9 @@ void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, PresetScope
   cmd->add_flag("--keep-waters", options.structure.keep_waters, "Keep waters (default: removed)");
   cmd->add_flag("--no-hetero", no_hetero, "Remove ligands, ions and other HETATM groups (default: kept)");
   cmd->add_option("--radii", radii_file, "Radius table: 'ELEMENT RADIUS' per line (default: Bondi 1964)");
+  cmd->add_flag("--strict", strict,
+                "Refuse a structure file with any warning (a truncated last line, unknown elements, ignored "
+                "columns): exit 1 instead of a map with warnings");
   cmd->add_option("--preset", preset, preset_help(scope))->check(CLI::IsMember({"paper", "fast"}));
   cmd->add_flag("--cavities", cavities,
                 "Carve internal cavities that hold a probe, as separate reported components (default: filled, as "
@@ -88,6 +119,7 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
   }
   options.structure.keep_hetero = !no_hetero;
   if (keep_hydrogens || no_hydrogens) options.structure.keep_hydrogens = keep_hydrogens;
+  options.structure.strict = strict;
   if (cavities) options.surface.carve_cavities = true;
   if (!radii_file.empty()) options.structure.radii = load_radius_table(radii_file);
   ExplicitOptions given;
@@ -121,10 +153,10 @@ void MapCliOptions::add(CLI::App* command, WeightingCount count) {
                       "structures: by decreasing area, default 0 = the outer surface)");
   command->add_option("--weld-tolerance", job.prepare.weld_tolerance,
                       "Weld vertices closer than this (default 0: exactly coincident only)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_number(0, kUnbounded));
   command->add_option("--collapse-floor", job.map.collapse_floor,
-                      "Normalized area ratio below which a triangle counts as collapsed (default 1e-6)")
-      ->check(CLI::PositiveNumber);
+                      "Normalized area ratio below which a triangle counts as collapsed (default 1e-6; below 1)")
+      ->check(finite_number(0, 1, LowEnd::kExcluded));
   command->add_flag("--ascii", job.ascii, "Write ASCII PLY with full precision (%.17g), e.g. for PyMOL");
   add_equalizing_rounds_option(command, job.map);
   command
@@ -215,12 +247,12 @@ void PropertyCliOptions::add(CLI::App* command, MapJobOptions& job) {
       ->check(CLI::ExistingFile);
   command->add_flag("--apbs", apbs, "Electrostatics by APBS (Poisson-Boltzmann; runs pdb2pqr and apbs)");
   command->add_option("--temperature", e.temperature, "Temperature in K of kT/e (default 298.15)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_number(0, 1e5, LowEnd::kExcluded, " K"));
   command->add_option("--dielectric", dielectric,
                       "Coulomb dielectric: '4r' (distance-dependent, default) or a constant such as 80");
   command->add_option("--potential-offset", e.offset,
                       "Å: the potential is taken this far out along each vertex normal (default 1.4)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_number(0, 100, LowEnd::kIncluded, " Å"));
   command->add_option("--force-field", force_field, "pdb2pqr's force field: amber (default) or parse")
       ->check(CLI::IsMember({"amber", "parse"}));
 }

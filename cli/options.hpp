@@ -16,7 +16,7 @@ namespace spheremap::cli {
 /// apply() after: apply() fills `options` (chains, hetero, radius table, --preset, simplification).
 struct StructureCliOptions {
   std::string chains, radii_file, preset;
-  bool no_hetero = false, cavities = false, keep_hydrogens = false, no_hydrogens = false;
+  bool no_hetero = false, cavities = false, keep_hydrogens = false, no_hydrogens = false, strict = false;
   double mesh_edge = -1, mesh_tolerance = -1;  // -1: not given
   CLI::App* command = nullptr;
   /// `scope` kMap: map and batch (simplification before the map, on by default for structures);
@@ -65,6 +65,15 @@ Weights parse_weights(const std::string& name);
 
 /// --component: 'largest' or a component number. Throws InputError for anything else.
 ComponentChoice parse_component(const std::string& text);
+
+/// Bounds of a real option's range: whether the low end itself is allowed.
+enum class LowEnd { kIncluded, kExcluded };
+
+/// A validator for a real-valued option: a finite decimal number in [low, high] ((low, high] with
+/// LowEnd::kExcluded); nan, inf and anything that is not a number are refused with a message that says
+/// what is expected (`unit` is appended to the numbers, e.g. " Å"). Does not throw (its check returns the
+/// message CLI11 shows).
+CLI::Validator finite_number(double low, double high, LowEnd low_end = LowEnd::kIncluded, const std::string& unit = "");
 
 /// -o,--output (required).
 void add_output_option(CLI::App* command, std::string& output, const std::string& description);
