@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/pipeline/output_folder.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -21,7 +22,7 @@ struct MapCommand {
 
   std::string input, output, poles, components = "outer";
   MapCliOptions map;
-  bool quiet = false;
+  bool quiet = false, force = false;
   void add(CLI::App* command);
   int run();
 };
@@ -40,16 +41,31 @@ std::pair<std::int32_t, std::int32_t> parse_poles(const std::string& text) {
   }
 }
 
+// The reader's warnings (a truncated last line, unknown elements), on stderr even with -q.
+void print_warnings(const std::string& input, const MapJobResult& result) {
+  for (const auto& warning : result.structure.warnings)
+    std::cerr << fmt::format("spheremap: warning: {}: {}\n", input, warning);
+}
+
 // --components all: every genus-0 component of the molecular surface into OUTPUT/component-K.
 int map_every_component(const MapCommand& s) {
   if (!s.map.component.empty()) throw InputError("--component and --components all exclude each other");
   const auto results = run_map_job_components(s.input, s.map.job);
   if (results.empty())
     throw MeshRefused(fmt::format("{}: no component of the molecular surface has genus 0 (--keep-topology?)", s.input));
+  print_warnings(s.input, results.front());
+  if (s.force) remove_map_outputs(s.output);
+  try {
+    for (const auto& result : results)
+      write_map_outputs(std::filesystem::path(s.output) / fmt::format("component-{}", result.component_index), result,
+                        s.map.job);
+  } catch (const Error&) {
+    remove_map_outputs(s.output);  // no partial output: the components written so far go too
+    throw;
+  }
   int code = 0;
   for (const auto& result : results) {
     const auto folder = std::filesystem::path(s.output) / fmt::format("component-{}", result.component_index);
-    write_map_outputs(folder, result, s.map.job);
     const bool certified = result.map.certificate.certified();
     if (!s.quiet || !certified)
       std::cout << fmt::format("component {} ({}) -> {}\n", result.component_index,
@@ -65,6 +81,8 @@ int map_every_component(const MapCommand& s) {
 
 int map_one(const MapCommand& s) {
   const auto result = run_map_job(s.input, s.map.job);
+  print_warnings(s.input, result);
+  if (s.force) remove_map_outputs(s.output);
   write_map_outputs(s.output, result, s.map.job);
   const auto& c = result.map.certificate;
   if (!s.quiet || !c.certified()) std::cout << summary_text(result);
@@ -95,10 +113,15 @@ void MapCommand::add(CLI::App* command) {
                       "area)")
       ->check(CLI::IsMember({"outer", "all"}));
   add_quiet_flag(command, quiet);
+  command->add_flag("--force", force,
+                    "Replace the outputs of an earlier run in the output folder (surface.ply, sphere.ply, "
+                    "report.json, component-K/), removed once the new map is made; without it such a folder is "
+                    "refused. Other files are kept");
   map.add(command, WeightingCount::kOne);
 }
 
 int MapCommand::run() {
+  check_map_output_folder(output, force);
   map.apply();
   if (!poles.empty()) map.job.map.poles = parse_poles(poles);
   return components == "all" ? map_every_component(*this) : map_one(*this);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -263,7 +264,7 @@ MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJob
 }
 namespace {
 
-// The structure's lines of summary_text: components, the handle repair, the reader's warnings.
+// The structure's lines of summary_text: components, the handle repair (the reader's warnings: the caller's).
 std::string structure_text(const MapJobResult& result) {
   std::int64_t cavities = 0, pieces = 0;
   for (const auto& c : result.components)
@@ -281,7 +282,6 @@ std::string structure_text(const MapJobResult& result) {
                         to_string(t.method), t.genus_before, cuts, fills, t.samples_changed, t.volume_changed,
                         t.area_before, t.area_after, 100 * (t.area_after / t.area_before - 1));
   }
-  for (const auto& warning : result.structure.warnings) text += fmt::format("  warning: {}\n", warning);
   return text;
 }
 
@@ -430,6 +430,43 @@ GlbMesh glb_mesh(const Mesh& ply, const std::vector<Vec3>& normals, const MapJob
 
 }  // namespace
 
+const std::vector<std::string>& map_output_names() {
+  static const std::vector<std::string> names = {kSurfaceFile, kSphereFile, kSurfaceGlbFile, kSphereGlbFile,
+                                                 kAtomsFile, kResiduesFile, kReportFile};
+  return names;
+}
+
+namespace {
+
+// The writes of write_map_outputs: on a failure, what was written is removed again.
+class OutputsWritten {
+ public:
+  explicit OutputsWritten(std::filesystem::path directory, bool created)
+      : directory_(std::move(directory)), created_(created) {}
+  OutputsWritten(const OutputsWritten&) = delete;
+  OutputsWritten& operator=(const OutputsWritten&) = delete;
+  ~OutputsWritten() {
+    if (committed_) return;
+    std::error_code ignored;
+    for (const auto& file : written_) std::filesystem::remove(file, ignored);
+    if (created_ && std::filesystem::is_empty(directory_, ignored)) std::filesystem::remove(directory_, ignored);
+  }
+  void write(const std::string& name, const std::function<void(const std::filesystem::path&)>& writer) {
+    const auto path = directory_ / name;
+    writer(path);
+    written_.push_back(path);
+  }
+  void commit() { committed_ = true; }
+
+ private:
+  std::filesystem::path directory_;
+  bool created_;
+  bool committed_ = false;
+  std::vector<std::filesystem::path> written_;
+};
+
+}  // namespace
+
 void write_map_outputs(const std::filesystem::path& directory, const MapJobResult& result,
                        const MapJobOptions& options) {
   // Everything that can fail on the user's input (--color) fails before the folder is touched.
@@ -442,26 +479,35 @@ void write_map_outputs(const std::filesystem::path& directory, const MapJobResul
   surface.integer_attributes[attributes::kInputVertex] = result.prepared.report.original_vertex;
   add_property_attributes(surface, result, options, ply);
   std::error_code error;
+  const bool existed = std::filesystem::is_directory(directory, error);
   std::filesystem::create_directories(directory, error);
   if (error)
     throw InputError(fmt::format("{}: cannot create the output folder: {}", directory.string(), error.message()));
   Mesh sphere = surface;
   sphere.positions = result.map.sphere;
-  write_ply(directory / kSurfaceFile, surface, ply);
-  write_ply(directory / kSphereFile, sphere, ply);
+  OutputsWritten outputs(directory, !existed);
+  outputs.write(kSurfaceFile, [&](const auto& path) { write_ply(path, surface, ply); });
+  outputs.write(kSphereFile, [&](const auto& path) { write_ply(path, sphere, ply); });
   // The surface's normals from the PLY columns (rounded to float); the sphere's are its unit points.
   std::vector<Vec3> normals(surface.vertex_count());
   for (std::size_t v = 0; v < normals.size(); ++v)
     normals[v] = normalized(Vec3{surface.real_attributes.at(attributes::kNormalX)[v],
                                  surface.real_attributes.at(attributes::kNormalY)[v],
                                  surface.real_attributes.at(attributes::kNormalZ)[v]});
-  write_glb(directory / kSurfaceGlbFile, glb_mesh(surface, normals, result, "surface"));
-  write_glb(directory / kSphereGlbFile, glb_mesh(sphere, result.map.sphere, result, "sphere"));
+  outputs.write(kSurfaceGlbFile,
+                [&](const auto& path) { write_glb(path, glb_mesh(surface, normals, result, "surface")); });
+  outputs.write(kSphereGlbFile,
+                [&](const auto& path) { write_glb(path, glb_mesh(sphere, result.map.sphere, result, "sphere")); });
   if (result.from_structure) {
-    write_file_atomically(directory / kAtomsFile, atoms_csv(result));
-    write_file_atomically(directory / kResiduesFile, residues_csv(result));
+    outputs.write(kAtomsFile, [&](const auto& path) { write_file_atomically(path, atoms_csv(result)); });
+    outputs.write(kResiduesFile, [&](const auto& path) { write_file_atomically(path, residues_csv(result)); });
   }
-  write_file_atomically(directory / kReportFile, make_report(result, options).dump(2) + "\n");
+  // Text from the input is valid UTF-8 already (valid_utf8); the handler keeps a stray byte from ever
+  // becoming an exception here.
+  const std::string report =
+      make_report(result, options).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  outputs.write(kReportFile, [&](const auto& path) { write_file_atomically(path, report); });
+  outputs.commit();
 }
 
 }  // namespace spheremap

@@ -103,8 +103,11 @@ const char* to_string(RunStatus status) {
 }
 
 const std::vector<std::string>& run_file_names() {
-  static const std::vector<std::string> names = {kSurfaceFile, kSphereFile, kRunReportFile, kRunErrorFile,
-                                                 kRunResourcesFile};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = map_output_names();
+    all.insert(all.end(), {kRunErrorFile, kRunResourcesFile});
+    return all;
+  }();
   return names;
 }
 
@@ -143,7 +146,9 @@ void clear_run_folder(const fs::path& folder) {
   if (!fs::is_directory(folder, ec)) return;
   remove_leftover_temporaries(folder, run_file_names());
   // report.json first: from then on the folder is pending whatever happens next.
-  for (const char* name : {kRunReportFile, kRunErrorFile, kRunResourcesFile, kSurfaceFile, kSphereFile}) {
+  std::vector<std::string> names = run_file_names();
+  std::stable_partition(names.begin(), names.end(), [](const std::string& name) { return name == kRunReportFile; });
+  for (const auto& name : names) {
     fs::remove(folder / name, ec);
     if (ec)
       throw InputError(fmt::format("{}: cannot remove it ({}); check the permissions of the output folder",

@@ -94,7 +94,8 @@ std::vector<MapJobResult> run_map_job_components(const std::filesystem::path& in
 /// Throws as run_map_job.
 MapJobResult run_map_job(const Mesh& mesh, const std::string& name, const MapJobOptions& options);
 
-/// A few lines for a terminal: sizes, repair, map, certificate, distortion, total time. Does not throw
+/// A few lines for a terminal: sizes, repair, map, certificate, distortion, total time (not the
+/// structure's warnings: the command prints them on stderr). Does not throw
 /// (but std::bad_alloc).
 std::string summary_text(const MapJobResult& result);
 
@@ -107,6 +108,11 @@ inline constexpr const char* kSphereGlbFile = "sphere.glb";
 inline constexpr const char* kAtomsFile = "atoms.csv";        // structures: one row per atom, by `atomid`
 inline constexpr const char* kResiduesFile = "residues.csv";  // structures: one row per residue
 
+/// Every file name a map run may write into its folder (write_map_outputs and the outputs added to it):
+/// what a new run replaces (pipeline/output_folder.hpp) and a batch clears. A new output file of the map
+/// job adds its name here. Does not throw.
+const std::vector<std::string>& map_output_names();
+
 /// Writes `surface.ply`, `sphere.ply`, their glTF 2.0 twins `surface.glb` and `sphere.glb` (io/gltf.hpp:
 /// COLOR_0 the PLY's colours, each property as attribute `_<NAME>`), for a structure `atoms.csv` and `residues.csv` (map_tables.hpp), and
 /// `report.json` (make_report) into `directory` (created if missing), each atomically, report.json last. Both
@@ -115,7 +121,9 @@ inline constexpr const char* kResiduesFile = "residues.csv";  // structures: one
 /// vertex normal of the surface `nx ny nz` (float) and `red green blue` (uchar) of the colour property
 /// (options.colour, colour_property); text provenance (atom, residue, chain names) is in atoms.csv only.
 /// A mesh file's own vertex attributes are kept. Precondition: `result` and `options` are those of one
-/// run_map_job*. Throws InputError if a file cannot be written or options.colour names no property.
+/// run_map_job*. Throws InputError if a file cannot be written or options.colour names no property;
+/// the files this call wrote are removed again first (and the folder, if this call created it and it is
+/// left empty): no partial output.
 void write_map_outputs(const std::filesystem::path& directory, const MapJobResult& result,
                        const MapJobOptions& options);
 
