@@ -367,6 +367,15 @@ class ReportFields {
     return *node;
   }
   bool is_null(std::initializer_list<const char*> keys) const { return at(keys).is_null(); }
+  // For fields added later (a report of an earlier version lacks them).
+  bool has(std::initializer_list<const char*> keys) const {
+    const nlohmann::json* node = &report_;
+    for (const char* key : keys) {
+      if (!node->is_object() || !node->contains(key)) return false;
+      node = &(*node)[key];
+    }
+    return true;
+  }
   const std::filesystem::path& source() const { return source_; }
 
   std::string text(std::initializer_list<const char*> keys) const {
@@ -430,8 +439,9 @@ ReportStructure read_structure_part(const ReportFields& f) {
   s.atoms = f.integer({"structure", "atoms"});
   s.probe = f.number({"structure", "probe"});
   s.grid = f.number({"structure", "grid"});
-  for (const auto& warning : f.array({"structure", "warnings"}))
-    if (warning.is_string()) s.warnings.push_back(warning.get<std::string>());
+  if (f.has({"structure", "warnings"}))
+    for (const auto& warning : f.array({"structure", "warnings"}))
+      if (warning.is_string()) s.warnings.push_back(warning.get<std::string>());
   ReportTopologyRepair& r = s.topology_repair;
   r.method = f.text({"structure", "topology_repair", "method"});
   r.rounds = f.integer({"structure", "topology_repair", "rounds"});

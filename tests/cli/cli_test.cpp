@@ -239,7 +239,7 @@ TEST_F(Cli, BadStructureFilesExitOneAndWriteNothing) {
       {"nan.pdb", atom + nan_atom + "END\n", "", "nan"},
       {"waters.pdb", water + "END\n", "", "0 atom(s) left"},
       {"chains.pdb", atom + second + "END\n", " --chains Z", "Z"},
-      {"budget.pdb", atom + second + "END\n", " --grid 0.05 --probe 400", "--grid"},
+      {"budget.pdb", atom + second + "END\n", " --grid 0.05 --probe 100", "--grid"},
   };
   for (const auto& [name, contents, options, expected] : cases) {
     std::ofstream(folder_ / name, std::ios::binary) << contents;
