@@ -10,6 +10,7 @@
 #include "spheremap/error.hpp"
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/pipeline/output_folder.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -44,7 +45,7 @@ std::pair<std::int32_t, std::int32_t> parse_poles(const std::string& text) {
 // The reader's warnings (a truncated last line, unknown elements), on stderr even with -q.
 void print_warnings(const std::string& input, const MapJobResult& result) {
   for (const auto& warning : result.structure.warnings)
-    std::cerr << fmt::format("spheremap: warning: {}: {}\n", input, warning);
+    std::cerr << fmt::format("spheremap: warning: {}: {}\n", valid_utf8(input), valid_utf8(warning));
 }
 
 // --components all: every genus-0 component of the molecular surface into OUTPUT/component-K.
@@ -70,7 +71,7 @@ int map_every_component(const MapCommand& s) {
     if (!s.quiet || !certified)
       std::cout << fmt::format("component {} ({}) -> {}\n", result.component_index,
                                to_string(result.components[static_cast<std::size_t>(result.component_index)].kind),
-                               folder.string())
+                               valid_utf8(folder.string()))
                 << summary_text(result);
     if (!certified) code = static_cast<int>(ExitCode::kNotCertified);
   }

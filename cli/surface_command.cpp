@@ -7,6 +7,7 @@
 #include "spheremap/error.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/pipeline/molecular_surface.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -71,7 +72,7 @@ struct SurfaceCommand {
     structure.apply(options);
     const Molecule molecule = read_structure(input, options.structure);
     for (const auto& warning : molecule.report.warnings)
-      std::cerr << fmt::format("spheremap: warning: {}: {}\n", input, warning);  // even with -q
+      std::cerr << fmt::format("spheremap: warning: {}: {}\n", valid_utf8(input), valid_utf8(warning));  // even with -q
     HandleRepairReport repair;
     MolecularSurface result;
     try {

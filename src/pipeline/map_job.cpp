@@ -21,6 +21,7 @@
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/geometry/normals.hpp"
 #include "spheremap/properties/colour_scale.hpp"
+#include "spheremap/text.hpp"
 #include "spheremap/surface/provenance.hpp"
 #include "../util/stage_timer.hpp"
 
@@ -99,7 +100,7 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
   result.structure_atoms = surface.atoms;
   if (surface.components.empty())
     throw MeshRefused(fmt::format("{}: the molecular surface is empty", input.string()));
-  return fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", input.string(), options.surface.probe,
+  return fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", valid_utf8(input.string()), options.surface.probe,
                      options.surface.grid);
 }
 
@@ -316,7 +317,7 @@ std::string summary_text(const MapJobResult& result) {
                          result.prepare_seconds + result.metrics_seconds;
   for (const auto& t : map.diagnostics.timings) total_seconds += t.seconds;
   total_seconds += result.properties_seconds;
-  std::string text = fmt::format("{}: {} vertices, {} triangles\n", result.input.string(),
+  std::string text = fmt::format("{}: {} vertices, {} triangles\n", valid_utf8(result.input.string()),
                                  result.prepared.mesh.vertex_count(), result.prepared.mesh.triangle_count());
   if (result.from_structure) text += structure_text(result);
   if (result.simplified) text += simplification_text(result.simplification);
