@@ -165,11 +165,11 @@ ChildRun run_in(const fs::path& folder, const std::vector<std::string>& argument
   return run;
 }
 
-void PrintTo(const BadInputCase& c, std::ostream* out) { *out << c.name << ": spheremap " << c.arguments; }
+void PrintTo(const BadInputCase& c, std::ostream* out) { *out << "spheremap " << c.arguments; }
 
 class BadInput : public testing_support::FolderTest, public testing::WithParamInterface<BadInputCase> {};
 
-TEST_P(BadInput, ExitsWithItsCodeAndMessageAndLeavesNothing) {
+TEST_P(BadInput, Case) {
   const BadInputCase& c = GetParam();
   ASSERT_GE(c.exit_code, 0) << "cases.tsv: not five tab-separated fields: " << c.arguments;
   fs::copy(kTableFolder / "files", folder_, fs::copy_options::recursive);

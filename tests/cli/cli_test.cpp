@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 
 using testing_support::run_cli;
 using testing_support::slurp;
+using testing_support::write_text;
 
 class Cli : public testing_support::FolderTest {};
 
@@ -439,6 +440,54 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   const auto bad = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "x").string() + " --chains Q");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
   EXPECT_NE(bad.output.find("chain 'Q' does not exist"), std::string::npos) << bad.output;
+}
+
+// -o into a folder of an earlier run: refused (nothing touched) unless --force, which replaces the earlier
+// outputs as a whole (a stale component-3/ goes) and keeps other files.
+TEST_F(Cli, AnEarlierRunsFolderIsRefusedOrReplacedWithForce) {
+  const auto input = write_obj(folder_ / "ico.obj", make_icosphere(1));
+  const fs::path out = folder_ / "out";
+  ASSERT_EQ(run_cli("map " + input + " -o " + out.string() + " -q").exit_code, 0);
+  fs::create_directories(out / "component-3");
+  write_text(out / "component-3" / "report.json", "{}");
+  write_text(out / "notes.txt", "mine");
+  const std::string report = slurp(out / "report.json");
+  const auto refused = run_cli("map " + input + " -o " + out.string() + " -q");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.output.find("earlier run"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("--force"), std::string::npos) << refused.output;
+  EXPECT_TRUE(fs::exists(out / "component-3" / "report.json"));
+  EXPECT_EQ(slurp(out / "report.json"), report);  // untouched
+  const auto forced = run_cli("map " + input + " -o " + out.string() + " -q --force");
+  EXPECT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_FALSE(fs::exists(out / "component-3"));
+  EXPECT_EQ(slurp(out / "notes.txt"), "mine");
+  for (const char* name : {"surface.ply", "sphere.ply"}) EXPECT_TRUE(fs::exists(out / name)) << name;
+}
+
+// The reader's warnings reach stderr, report.json and the batch summary's message column.
+TEST_F(Cli, StructureWarningsReachStderrTheReportAndTheBatchSummary) {
+  const std::string pdb =
+      "ATOM      1  N   ALA A   1      11.104   6.134  -6.504  1.00  0.00           N\n"
+      "ATOM      2  CA  ALA A   1      11.639   6.071  -5.147  1.00  0.00           C\n"
+      "ATOM      3  C   ALA A   1      13.149   5.916  -5.179  1.00  0.00           C";  // no final line break
+  write_text(folder_ / "cut.pdb", pdb);
+  const auto map = run_cli("map " + (folder_ / "cut.pdb").string() + " -o " + (folder_ / "m").string() + " -q");
+  EXPECT_EQ(map.exit_code, 0) << map.output;
+  EXPECT_NE(map.output.find("warning: " + (folder_ / "cut.pdb").string() + ": the file does not end with a line break"),
+            std::string::npos)
+      << map.output;
+  const auto report = nlohmann::json::parse(slurp(folder_ / "m" / "report.json"));
+  ASSERT_EQ(report["structure"]["warnings"].size(), 1u);
+  EXPECT_NE(report["structure"]["warnings"][0].get<std::string>().find("line break"), std::string::npos);
+  const auto batch = run_cli("batch " + (folder_ / "cut.pdb").string() + " -o " + (folder_ / "b").string() + " -q");
+  EXPECT_EQ(batch.exit_code, 0) << batch.output;
+  EXPECT_NE(batch.output.find("warning: the file does not end with a line break"), std::string::npos) << batch.output;
+  EXPECT_NE(slurp(folder_ / "b" / "summary.csv").find("warning: the file does not end with a line break"),
+            std::string::npos);
+  const auto strict = run_cli("batch " + (folder_ / "cut.pdb").string() + " -o " + (folder_ / "s").string() + " -q --strict");
+  EXPECT_EQ(strict.exit_code, 1) << strict.output;
+  EXPECT_NE(slurp(folder_ / "s" / "summary.csv").find("--strict"), std::string::npos);
 }
 
 }  // namespace

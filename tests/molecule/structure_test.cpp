@@ -140,6 +140,62 @@ TEST_F(Structure, BadInputsGiveAClearError) {
             std::string::npos);
 }
 
+// A file cut short: the last line without its line break, or the last record shorter than the others, is a
+// warning (quoting the line); StructureOptions::strict makes it an error naming the file.
+TEST_F(Structure, SignsOfATruncatedFileAreWarningsAndStrictMakesThemErrors) {
+  const std::string body = record("ATOM", 1, " N", ' ', "ALA", 'A', 1, 1, 2, 3, 1, "N") +
+                           record("ATOM", 2, " CA", ' ', "ALA", 'A', 1, 2.4, 2, 3, 1, "C");
+  const std::string last = record("ATOM", 3, " C", ' ', "ALA", 'A', 1, 3.8, 2, 3, 1, "C");
+  const auto whole = read_structure(write("whole.pdb", body + last));
+  EXPECT_TRUE(whole.report.warnings.empty());
+  const auto no_break = read_structure(write("no-break.pdb", body + last.substr(0, last.size() - 1)));
+  ASSERT_EQ(no_break.report.warnings.size(), 1u);
+  EXPECT_NE(no_break.report.warnings[0].find("does not end with a line break"), std::string::npos);
+  EXPECT_EQ(no_break.atoms.size(), 3u);
+  const auto short_record = read_structure(write("short.pdb", body + last.substr(0, 66) + "\n"));
+  ASSERT_EQ(short_record.report.warnings.size(), 1u);
+  EXPECT_NE(short_record.report.warnings[0].find("shorter than the file's 2 other ones"), std::string::npos);
+  StructureOptions strict;
+  strict.strict = true;
+  EXPECT_NO_THROW(read_structure(folder_ / "whole.pdb", strict));
+  for (const char* name : {"no-break.pdb", "short.pdb"}) {
+    try {
+      read_structure(folder_ / name, strict);
+      ADD_FAILURE() << name << ": no error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("--strict"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Names from the file reach JSON and CSV: ill-formed UTF-8 becomes U+FFFD there.
+TEST_F(Structure, NamesAreMadeValidUtf8) {
+  const auto molecule = read_structure(write("latin1.pdb", record("ATOM", 1, " N\xE9", ' ', "ALA", 'A', 1, 1, 2, 3, 1, "N") +
+                                                                record("ATOM", 2, " CA", ' ', "AL\xFF", 'A', 1, 2.4, 2, 3, 1, "C")));
+  ASSERT_EQ(molecule.atoms.size(), 2u);
+  EXPECT_EQ(molecule.atoms[0].name, "N\xEF\xBF\xBD");
+  EXPECT_EQ(molecule.atoms[1].residue_name, "AL\xEF\xBF\xBD");
+}
+
+// pdb2pqr and APBS give some hydrogens radius 0: with --keep-hydrogens they carry charge but make no surface.
+TEST_F(Structure, PqrAtomsOfRadiusZeroMakeNoSurface) {
+  const auto path = write("h.pqr", "ATOM      1  N   ALA A   1       1.000   2.000   3.000 -0.3000 1.8240\n"
+                                   "ATOM      2  CA  ALA A   1       2.400   2.000   3.000  0.1000 1.9080\n"
+                                   "ATOM      3  H   ALA A   1       0.500   2.000   3.000  0.3000 0.0000\n");
+  StructureOptions options;
+  options.keep_hydrogens = true;
+  const auto molecule = read_structure(path, options);
+  EXPECT_EQ(molecule.atoms.size(), 2u);
+  ASSERT_EQ(molecule.zero_radius_atoms.size(), 1u);
+  EXPECT_EQ(molecule.zero_radius_atoms[0].name, "H");
+  EXPECT_EQ(molecule.zero_radius_atoms[0].charge, 0.3);
+  EXPECT_EQ(molecule.report.zero_radius_atoms, 1);
+  const auto only_zero = write("zero.pqr", "ATOM      1  H1  ALA A   1       1.000   2.000   3.000  0.3000 0.0000\n"
+                                           "ATOM      2  H2  ALA A   1       2.400   2.000   3.000  0.3000 0.0000\n");
+  EXPECT_THROW(read_structure(only_zero, options), InputError);
+}
+
 // B-factors are the column users fill with any per-atom value: each must come out as the decimal in the
 // file (gemmi holds it as a float; 15.23f widened is 15.229999542236328).
 TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
