@@ -11,12 +11,14 @@
 #include <unistd.h>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -589,6 +591,138 @@ TEST_F(BatchCli, ExitCodesAndOneLinePerInputWithoutATerminal) {
                                      folder_ / "log.txt")),
             1);
   EXPECT_FALSE(fs::exists(folder_ / "bad" / "summary.csv"));
+}
+
+// --- Batches under faults: kills at random moments, a full disk -------------------------------------
+
+// Twelve inputs, three of them bad (open, a NaN vertex, empty), small enough that a batch takes a moment.
+class BatchFaults : public BatchCli {
+ protected:
+  std::vector<std::string> faulty_set() {
+    const fs::path in = folder_ / "in";
+    for (int k = 0; k < 9; ++k)
+      write_ply(in / fmt::format("good{}.ply", k), perturb_vertices(make_icosphere(2), 0.1, 40 + k));
+    Mesh open = make_icosphere(1);
+    open.triangles.pop_back();
+    write_ply(in / "bad-open.ply", open);
+    write_text(in / "bad-nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n");
+    write_text(in / "bad-empty.stl", "");
+    return {"batch", in.string(), "--jobs", "2", "-q"};
+  }
+
+  static std::vector<std::string> with_output(std::vector<std::string> arguments, const fs::path& root,
+                                              std::initializer_list<const char*> more = {}) {
+    arguments.insert(arguments.end(), {"-o", root.string()});
+    arguments.insert(arguments.end(), more.begin(), more.end());
+    return arguments;
+  }
+
+  // The batch's running children (Linux: /proc/PID/task/PID/children), empty if none or unknown.
+  static std::vector<pid_t> children_of(pid_t pid) {
+    std::ifstream in(fmt::format("/proc/{}/task/{}/children", pid, pid));
+    std::vector<pid_t> children;
+    for (pid_t child; in >> child;) children.push_back(child);
+    return children;
+  }
+
+  // Every complete run folder of `root` (report.json present) holds exactly the reference's PLY files.
+  void expect_complete_runs_match(const fs::path& root, const fs::path& reference) {
+    for (const auto& entry : fs::directory_iterator(root)) {
+      if (!entry.is_directory() || !fs::exists(entry.path() / "report.json")) continue;
+      const auto name = entry.path().filename();
+      for (const char* file : {"surface.ply", "sphere.ply"})
+        EXPECT_EQ(slurp(entry.path() / file), slurp(reference / name / file)) << name << "/" << file;
+    }
+  }
+
+  static void expect_no_temporaries(const fs::path& root) {
+    for (const auto& entry : fs::recursive_directory_iterator(root))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+};
+
+TEST_F(BatchFaults, KilledAtRandomMomentsResumesToTheUninterruptedSummary) {
+  const auto arguments = faulty_set();
+  const fs::path reference = folder_ / "reference", killed = folder_ / "killed";
+  ASSERT_EQ(wait_exit_code(spawn_cli(with_output(arguments, reference), folder_ / "log.txt")), 1)
+      << slurp(folder_ / "log.txt");
+  const auto rows = parse_csv(slurp(reference / "summary.csv"));
+  ASSERT_EQ(rows.size(), 13u);
+  std::size_t errors = 0;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const bool bad = rows[r][0].find("bad-") != std::string::npos;
+    EXPECT_EQ(rows[r][3] == "error", bad) << rows[r][0] << ": " << rows[r][3];
+    errors += rows[r][3] == "error";
+  }
+  EXPECT_EQ(errors, 3u);
+
+  // Kills at seeded random moments: of the batch itself, or of one of the children it forked.
+  std::mt19937 random(2026);
+  int kills = 0, finished_alone = 0;
+  for (int round = 0; round < 8; ++round) {
+    const pid_t pid = spawn_cli(with_output(arguments, killed, {"--retry-errors"}), folder_ / "log.txt");
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(5, 150)(random)));
+    const auto children = children_of(pid);
+    if (round % 2 == 1 && !children.empty()) {
+      ::kill(children.front(), SIGKILL);  // as the out-of-memory killer would
+    } else {
+      ::kill(pid, SIGKILL);
+    }
+    ++kills;
+    const int code = wait_exit_code(pid);
+    if (code == 0 || code == 1) ++finished_alone;
+  }
+  ASSERT_EQ(wait_exit_code(spawn_cli(with_output(arguments, killed, {"--retry-errors"}), folder_ / "log.txt")), 1)
+      << slurp(folder_ / "log.txt");
+  EXPECT_EQ(csv_without_timings(slurp(killed / "summary.csv")), csv_without_timings(slurp(reference / "summary.csv")));
+  EXPECT_EQ(jsonl_without_timings(slurp(killed / "summary.jsonl")),
+            jsonl_without_timings(slurp(reference / "summary.jsonl")));
+  expect_complete_runs_match(killed, reference);
+  expect_no_temporaries(killed);
+  RecordProperty("kills", kills);
+  RecordProperty("finished_before_the_kill", finished_alone);
+}
+
+// A full disk, simulated by RLIMIT_FSIZE (writes beyond it fail with EFBIG; SIGXFSZ ignored): the batch
+// fails the inputs it cannot write, trusts none of their half-written files, and a later run with room
+// (--retry-errors) gives the uninterrupted summary.
+TEST_F(BatchFaults, AFullDiskFailsRowsAndARunWithRoomRepairsThem) {
+  const auto arguments = faulty_set();
+  const fs::path reference = folder_ / "reference", full = folder_ / "full";
+  ASSERT_EQ(wait_exit_code(spawn_cli(with_output(arguments, reference), folder_ / "log.txt")), 1);
+  std::vector<std::string> argv_text = {SPHEREMAP_CLI_PATH};
+  for (const auto& a : with_output(arguments, full)) argv_text.push_back(a);
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string log = (folder_ / "full-log.txt").string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{6000, 6000};  // bytes per file: every PLY of these meshes is larger
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  ASSERT_GT(pid, 0);
+  const int code = wait_exit_code(pid);
+  EXPECT_TRUE(code == 1 || code == 4) << code << "\n" << slurp(log);
+  EXPECT_EQ(slurp(log).find("internal error"), std::string::npos) << slurp(log);
+  // Every good input failed its row for want of room, saying so (on the terminal: the summary may not fit).
+  for (int k = 0; k < 9; ++k) {
+    const std::string message = slurp(full / fmt::format("good{}", k) / "error.json");
+    EXPECT_NE(message.find("cannot write the file (File too large)"), std::string::npos) << k << ": " << message;
+  }
+  expect_complete_runs_match(full, reference);
+  expect_no_temporaries(full);
+  ASSERT_EQ(wait_exit_code(spawn_cli(with_output(arguments, full, {"--retry-errors"}), folder_ / "log.txt")), 1)
+      << slurp(folder_ / "log.txt");
+  EXPECT_EQ(csv_without_timings(slurp(full / "summary.csv")), csv_without_timings(slurp(reference / "summary.csv")));
+  expect_complete_runs_match(full, reference);
 }
 
 // --- Real structures -------------------------------------------------------------------------------
