@@ -126,7 +126,7 @@ std::string quoted_line(const std::string& text) {
   std::string shown = text.substr(0, 80);
   for (char& c : shown)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
-  return "'" + valid_utf8(shown) + (text.size() > 80 ? "...'" : "'");
+  return fmt::format("'{}{}'", valid_utf8(shown), text.size() > 80 ? "..." : "");
 }
 
 std::vector<std::string> truncation_warnings(const std::string& text) {
