@@ -414,17 +414,12 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
     throw InputError(fmt::format("{}: --strict: {}. Fix the file, or leave out --strict to map it with {}",
                                  path.string(), fmt::join(report.warnings, "; "),
                                  report.warnings.size() == 1 ? "this warning" : "these warnings"));
-  const std::size_t kept = molecule.atoms.size() + molecule.zero_radius_atoms.size();
-  if (kept < 2)
+  if (molecule.atoms.size() < 2)
     throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
                                  "at least two. Check --chains and --model, or keep more atoms (--keep-waters, "
                                  "--keep-hydrogens{})",
-                                 path.string(), kept, options.keep_hetero ? "" : ", HETATM groups",
+                                 path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
                                  options.keep_hetero ? "" : ", without --no-hetero"));
-  if (molecule.atoms.empty())
-    throw InputError(fmt::format("{}: all {} atoms left after filtering have radius 0, so there is no molecular "
-                                 "surface; give the atoms radii (the PQR radius column)",
-                                 path.string(), kept));
   return molecule;
 }
 

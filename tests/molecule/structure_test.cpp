@@ -178,24 +178,6 @@ TEST_F(Structure, NamesAreMadeValidUtf8) {
   EXPECT_EQ(molecule.atoms[1].residue_name, "AL\xEF\xBF\xBD");
 }
 
-// pdb2pqr and APBS give some hydrogens radius 0: with --keep-hydrogens they carry charge but make no surface.
-TEST_F(Structure, PqrAtomsOfRadiusZeroMakeNoSurface) {
-  const auto path = write("h.pqr", "ATOM      1  N   ALA A   1       1.000   2.000   3.000 -0.3000 1.8240\n"
-                                   "ATOM      2  CA  ALA A   1       2.400   2.000   3.000  0.1000 1.9080\n"
-                                   "ATOM      3  H   ALA A   1       0.500   2.000   3.000  0.3000 0.0000\n");
-  StructureOptions options;
-  options.keep_hydrogens = true;
-  const auto molecule = read_structure(path, options);
-  EXPECT_EQ(molecule.atoms.size(), 2u);
-  ASSERT_EQ(molecule.zero_radius_atoms.size(), 1u);
-  EXPECT_EQ(molecule.zero_radius_atoms[0].name, "H");
-  EXPECT_EQ(molecule.zero_radius_atoms[0].charge, 0.3);
-  EXPECT_EQ(molecule.report.zero_radius_atoms, 1);
-  const auto only_zero = write("zero.pqr", "ATOM      1  H1  ALA A   1       1.000   2.000   3.000  0.3000 0.0000\n"
-                                           "ATOM      2  H2  ALA A   1       2.400   2.000   3.000  0.3000 0.0000\n");
-  EXPECT_THROW(read_structure(only_zero, options), InputError);
-}
-
 // B-factors are the column users fill with any per-atom value: each must come out as the decimal in the
 // file (gemmi holds it as a float; 15.23f widened is 15.229999542236328).
 TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {

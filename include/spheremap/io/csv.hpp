@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "spheremap/text.hpp"  // valid_utf8
+
 namespace spheremap {
 
 /// One record of a delimited file and the line it starts on (1-based).
@@ -22,10 +24,6 @@ struct DelimitedRecord {
 /// Throws InputError naming `name` and the line for a quoted field that never closes or is followed by other
 /// characters than a delimiter or the end of the record.
 std::vector<DelimitedRecord> read_delimited(std::string_view text, char delimiter, const std::string& name);
-
-/// `text` with every byte sequence that is not valid UTF-8 replaced by U+FFFD (so that any input's names can
-/// go into UTF-8 outputs). Never throws (but std::bad_alloc).
-std::string valid_utf8(std::string_view text);
 
 /// One field of an RFC 4180 CSV file: valid_utf8(text), quoted (quotes doubled) when it holds a comma, a
 /// quote, a line break, or leading or trailing white space. Never throws (but std::bad_alloc).
