@@ -7,6 +7,7 @@ std::string_view to_string(ScaleKind kind) {
     case ScaleKind::sequential: return "sequential";
     case ScaleKind::diverging: return "diverging";
     case ScaleKind::categorical: return "categorical";
+    case ScaleKind::spectrum: return "spectrum";
   }
   return "sequential";
 }

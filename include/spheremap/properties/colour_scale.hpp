@@ -32,10 +32,14 @@ const ColourTable& viridis_table();
 /// interpolated linearly in sRGB: negative potentials red, positive blue, as the paper draws them.
 const ColourTable& red_white_blue_table();
 
+/// Google's Turbo (Mikhailov 2019), matplotlib's published 256 entries rounded to 8 bits: the spectrum from
+/// dark blue (entry 0) through green and yellow to dark red (entry 255), for the spectrum scale.
+const ColourTable& spectrum_table();
+
 /// Tableau 10 repeated: entry k is class k's colour (classes 10 apart share a colour).
 const ColourTable& categorical_table();
 
-/// The table of a scale kind (one of the three above).
+/// The table of a scale kind (one of the four above).
 const ColourTable& colour_table(ScaleKind kind);
 
 
@@ -49,7 +53,7 @@ int colour_index(ScaleKind kind, const ValueRange& range, double value);
 /// colour_table(kind)[colour_index(...)], or kMissingValueColour for -1. Never throws.
 Rgb8 colour_of(ScaleKind kind, const ValueRange& range, double value);
 
-/// A default range for `values` (NaN ignored): sequential [min, max]; diverging [-m, m] with m the largest
+/// A default range for `values` (NaN ignored): sequential and spectrum [min, max]; diverging [-m, m] with m the largest
 /// |value|; categorical [0, 255]. With no finite value, or all values equal (m = 0), the range is widened
 /// to a width of 1 around them ([-1, 1] for diverging), so that hi > lo always. Never throws.
 ValueRange data_range(ScaleKind kind, std::span<const float> values);

@@ -16,9 +16,11 @@ enum class ScaleKind : std::uint8_t {
   sequential,   // ordered values (B-factor, hydrophobicity, curvature): viridis
   diverging,    // signed values around 0 (electrostatics): red (low) - white - blue (high)
   categorical,  // whole numbers naming classes (chain, octant): one distinct colour per class
+  spectrum,     // ordered values shown as the colours of the spectrum, blue (low) to red (high): the paper's
+                // sequence-position colouring (Figure 8)
 };
 
-/// "sequential", "diverging" or "categorical". Never throws.
+/// "sequential", "diverging", "categorical" or "spectrum". Never throws.
 std::string_view to_string(ScaleKind kind);
 
 /// The values a continuous colour scale spans: lo gets the first colour, hi the last; values outside saturate.
