@@ -8,6 +8,8 @@ packages=(build-essential cmake ninja-build pkg-config
           libopenblas0-serial pymol-data libgtest-dev libgmock-dev libbenchmark-dev
           libstb-dev pdb2pqr apbs
           pymol python3-meshio python3-open3d  # the tests that PyMOL, meshio and Open3D read the outputs
+          libcairo2-dev libfontconfig-dev libfreetype-dev fonts-dejavu-core  # pictures (render/)
+          proj-bin  # PROJ's `proj`, the projections' test oracle
           chromium)  # headless Chromium for the viewer's browser test
 # The viewer (index.html) is bundled at build time with npm packages (viewer/package-lock.json): Debian's
 # Node.js and npm only when no npm is on the PATH already (a newer Node.js from elsewhere is kept).

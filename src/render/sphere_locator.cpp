@@ -1,0 +1,156 @@
+// The bucket grid of a sphere map and the point location in it (see sphere_locator.hpp).
+#include "spheremap/render/sphere_locator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace spheremap {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Bounding caps are widened by this much (radians): a cap computed with rounding must still hold its
+// triangle's edges.
+constexpr double kCapMargin = 1e-9;
+
+Vec3 normalized(const Vec3& v) {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return {v[0] / n, v[1] / n, v[2] / n};
+}
+
+double det3(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+double angle_between(const Vec3& a, const Vec3& b) {
+  const Vec3 cross{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  return std::atan2(std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]),
+                    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+}
+
+double colatitude(const Vec3& u) { return std::acos(std::clamp(u[2], -1.0, 1.0)); }
+
+double azimuth(const Vec3& u) {
+  const double phi = std::atan2(u[1], u[0]);
+  return phi < 0 ? phi + 2 * kPi : phi;
+}
+
+// The cells a triangle's cap meets, row by row: [first, last] columns (last may exceed the row's columns:
+// the range wraps around longitude 2π).
+struct CapCells {
+  int row_first = 0, row_last = 0;
+  double phi_lo = 0, phi_hi = 2 * kPi;  // the whole row when phi_hi - phi_lo >= 2π
+};
+
+CapCells cap_cells(const SphereLocator& l, const Triangle& t) {
+  const Vec3& a = l.vertices[t[0]];
+  const Vec3& b = l.vertices[t[1]];
+  const Vec3& c = l.vertices[t[2]];
+  const Vec3 sum{a[0] + b[0] + c[0], a[1] + b[1] + c[1], a[2] + b[2] + c[2]};
+  CapCells cells{0, l.rows - 1, 0, 2 * kPi};
+  // A cap wider than a hemisphere is not convex: such a triangle goes into every cell.
+  if (std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) < 1e-3) return cells;
+  const Vec3 centre = normalized(sum);
+  const double radius =
+      std::max({angle_between(centre, a), angle_between(centre, b), angle_between(centre, c)}) + kCapMargin;
+  if (radius >= kPi / 2) return cells;
+  const double theta = colatitude(centre);
+  const double row_height = kPi / l.rows;
+  cells.row_first = std::clamp(static_cast<int>(std::floor((theta - radius) / row_height)), 0, l.rows - 1);
+  cells.row_last = std::clamp(static_cast<int>(std::floor((theta + radius) / row_height)), 0, l.rows - 1);
+  if (theta - radius <= 0 || theta + radius >= kPi) return cells;  // the cap holds a pole: every longitude
+  const double half_width = std::asin(std::min(1.0, std::sin(radius) / std::sin(theta))) + kCapMargin;
+  const double phi = azimuth(centre);
+  cells.phi_lo = phi - half_width;
+  cells.phi_hi = phi + half_width;
+  return cells;
+}
+
+// Calls add(cell) for every cell of `cells`, each once.
+template <typename Add>
+void for_each_cell(const SphereLocator& l, const CapCells& cells, Add&& add) {
+  for (int row = cells.row_first; row <= cells.row_last; ++row) {
+    const int columns = l.row_columns[row];
+    const int first_cell = l.row_first_cell[row];
+    if (cells.phi_hi - cells.phi_lo >= 2 * kPi) {
+      for (int column = 0; column < columns; ++column) add(first_cell + column);
+      continue;
+    }
+    const double width = 2 * kPi / columns;
+    const int lo = static_cast<int>(std::floor(cells.phi_lo / width));
+    const int hi = static_cast<int>(std::floor(cells.phi_hi / width));
+    const int count = std::min(hi - lo + 1, columns);
+    for (int k = 0; k < count; ++k) add(first_cell + (((lo + k) % columns) + columns) % columns);
+  }
+}
+
+void lay_out_grid(SphereLocator& l) {
+  // About one cell per two triangles: 4 rows² / π cells in all.
+  const double cells = std::max(1.0, static_cast<double>(l.triangles.size()) / 2);
+  l.rows = std::clamp(static_cast<int>(std::ceil(std::sqrt(kPi * cells / 4))), 1, 4096);
+  l.row_columns.resize(l.rows);
+  l.row_first_cell.assign(l.rows + 1, 0);
+  for (int row = 0; row < l.rows; ++row) {
+    const double mid = (row + 0.5) * kPi / l.rows;
+    l.row_columns[row] = std::max(1, static_cast<int>(std::lround(2 * l.rows * std::sin(mid))));
+    l.row_first_cell[row + 1] = l.row_first_cell[row] + l.row_columns[row];
+  }
+}
+
+}  // namespace
+
+SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
+  SphereLocator l;
+  l.vertices.reserve(vertices.size());
+  for (const Vec3& v : vertices) l.vertices.push_back(normalized(v));
+  const auto n = static_cast<std::int64_t>(vertices.size());
+  for (const Triangle& t : triangles)
+    for (const std::int32_t v : t)
+      if (v < 0 || v >= n) throw std::invalid_argument("make_sphere_locator: a triangle index is out of range");
+  l.triangles = triangles;
+  lay_out_grid(l);
+  const int cells = l.row_first_cell[l.rows];
+  std::vector<CapCells> caps;
+  caps.reserve(triangles.size());
+  std::vector<std::int32_t> counts(static_cast<std::size_t>(cells) + 1, 0);
+  for (const Triangle& t : triangles) {
+    caps.push_back(cap_cells(l, t));
+    for_each_cell(l, caps.back(), [&](int cell) { ++counts[cell + 1]; });
+  }
+  for (int cell = 0; cell < cells; ++cell) counts[cell + 1] += counts[cell];
+  l.cell_first = counts;
+  l.cell_triangles.resize(static_cast<std::size_t>(counts[cells]));
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for_each_cell(l, caps[t], [&](int cell) { l.cell_triangles[counts[cell]++] = static_cast<std::int32_t>(t); });
+  return l;
+}
+
+SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction) {
+  const double theta = colatitude(normalized(direction));
+  const int row = std::clamp(static_cast<int>(theta / kPi * l.rows), 0, l.rows - 1);
+  const int columns = l.row_columns[row];
+  const int column = std::clamp(static_cast<int>(azimuth(direction) / (2 * kPi) * columns), 0, columns - 1);
+  const int cell = l.row_first_cell[row] + column;
+  SphereHit best;
+  double best_score = -std::numeric_limits<double>::infinity();
+  for (std::int32_t k = l.cell_first[cell]; k < l.cell_first[cell + 1]; ++k) {
+    const std::int32_t t = l.cell_triangles[k];
+    const Vec3& a = l.vertices[l.triangles[t][0]];
+    const Vec3& b = l.vertices[l.triangles[t][1]];
+    const Vec3& c = l.vertices[l.triangles[t][2]];
+    const std::array<double, 3> w{det3(direction, b, c), det3(a, direction, c), det3(a, b, direction)};
+    const double total = w[0] + w[1] + w[2];
+    if (!(total > 0)) continue;  // the point is behind the triangle's plane
+    const double score = std::min({w[0], w[1], w[2]}) / total;
+    if (score >= 0) return {t, {w[0] / total, w[1] / total, w[2] / total}};
+    if (score > best_score) best_score = score, best = {t, w};
+  }
+  if (best.triangle < 0) return best;
+  for (double& w : best.weights) w = std::max(w, 0.0);
+  const double total = best.weights[0] + best.weights[1] + best.weights[2];
+  for (double& w : best.weights) w /= total;
+  return best;
+}
+
+}  // namespace spheremap
