@@ -1,0 +1,171 @@
+// The data every picture of a map draws from (see globe.hpp).
+#include "spheremap/render/globe.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include "spheremap/attributes.hpp"
+
+namespace spheremap {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+const TextAttribute* text_attribute(const Mesh& mesh, const char* name) {
+  const auto found = mesh.text_attributes.find(name);
+  return found == mesh.text_attributes.end() ? nullptr : &found->second;
+}
+
+template <typename T>
+const std::vector<T>* attribute(const std::map<std::string, std::vector<T>>& attributes, const char* name) {
+  const auto found = attributes.find(name);
+  return found == attributes.end() ? nullptr : &found->second;
+}
+
+using ResidueKey = std::tuple<std::string, std::int32_t, std::string>;  // chain, number, insertion code
+
+// The residue of each vertex, from its atom's chain and number; residues sorted by key.
+void add_residues(const Mesh& surface, Globe& globe) {
+  const TextAttribute* chain = text_attribute(surface, attributes::kChain);
+  const auto* number = attribute(surface.integer_attributes, attributes::kResidueNumber);
+  if (chain == nullptr || number == nullptr) return;
+  const TextAttribute* insertion = text_attribute(surface, attributes::kInsertionCode);
+  const TextAttribute* name = text_attribute(surface, attributes::kResidueName);
+  std::map<ResidueKey, std::string> names;
+  std::vector<ResidueKey> keys;
+  keys.reserve(surface.vertex_count());
+  for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
+    keys.emplace_back(chain->at(v), (*number)[v], insertion ? insertion->at(v) : std::string());
+    names.try_emplace(keys.back(), name ? name->at(v) : std::string());
+  }
+  std::map<ResidueKey, std::int32_t> index;
+  for (const auto& [key, residue_name] : names) {
+    index.emplace(key, static_cast<std::int32_t>(globe.residues.size()));
+    globe.residues.push_back({std::get<0>(key), std::get<1>(key), std::get<2>(key), residue_name});
+  }
+  globe.vertex_residue.reserve(keys.size());
+  for (const ResidueKey& key : keys) globe.vertex_residue.push_back(index.at(key));
+}
+
+SurfaceProperty octant_property(const std::vector<Vec3>& sphere) {
+  SurfaceProperty p{{"octant", "", ScaleKind::categorical, std::nullopt, octant_names()}, "globe position", {}};
+  p.values.reserve(sphere.size());
+  // A zero coordinate counts as +, as in the octant metrics.
+  for (const Vec3& s : sphere) p.values.push_back((s[0] < 0) + 2 * (s[1] < 0) + 4 * (s[2] < 0));
+  return p;
+}
+
+// Chains numbered in order of their first atom (atomid) on the surface.
+SurfaceProperty chain_property(const Mesh& surface, const TextAttribute& chain) {
+  SurfaceProperty p{{"chain_index", "", ScaleKind::categorical, std::nullopt, {}}, "structure", {}};
+  const auto* atom = attribute(surface.integer_attributes, attributes::kAtomId);
+  std::vector<std::int32_t> first_atom(chain.dictionary.size(), std::numeric_limits<std::int32_t>::max());
+  for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
+    auto& first = first_atom[static_cast<std::size_t>(chain.codes[v])];
+    first = std::min(first, atom ? (*atom)[v] : static_cast<std::int32_t>(v));
+  }
+  std::vector<std::int32_t> order;  // codes present, by first atom
+  for (std::size_t c = 0; c < first_atom.size(); ++c)
+    if (first_atom[c] != std::numeric_limits<std::int32_t>::max()) order.push_back(static_cast<std::int32_t>(c));
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return std::tie(first_atom[a], a) < std::tie(first_atom[b], b);
+  });
+  std::vector<double> class_of(chain.dictionary.size(), kNaN);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    class_of[order[k]] = static_cast<double>(k);
+    p.info.categories.push_back(chain.dictionary[order[k]]);
+  }
+  p.values.reserve(surface.vertex_count());
+  for (const std::int32_t code : chain.codes) p.values.push_back(class_of[code]);
+  return p;
+}
+
+// Residues of each chain ranked by (number, insertion code), 0 for the first, 1 for the last.
+SurfaceProperty sequence_property(const Globe& globe) {
+  SurfaceProperty p{{"sequence_position", "", ScaleKind::spectrum, ValueRange{0, 1}, {}}, "residue order on the surface", {}};
+  std::vector<double> position(globe.residues.size(), 0.0);
+  // globe.residues is sorted by chain, then number and insertion code: each chain is one run.
+  for (std::size_t first = 0; first < globe.residues.size();) {
+    std::size_t last = first;
+    while (last + 1 < globe.residues.size() && globe.residues[last + 1].chain == globe.residues[first].chain) ++last;
+    for (std::size_t r = first; r <= last; ++r)
+      position[r] = last > first ? static_cast<double>(r - first) / static_cast<double>(last - first) : 0.0;
+    first = last + 1;
+  }
+  p.values.reserve(globe.vertex_residue.size());
+  for (const std::int32_t r : globe.vertex_residue) p.values.push_back(r < 0 ? kNaN : position[r]);
+  return p;
+}
+
+template <typename T>
+SurfaceProperty copied_property(std::string name, std::string unit, ScaleKind scale, const std::vector<T>& values,
+                                std::string source) {
+  SurfaceProperty p{{std::move(name), std::move(unit), scale, std::nullopt, {}}, std::move(source), {}};
+  p.values.assign(values.begin(), values.end());
+  return p;
+}
+
+}  // namespace
+
+std::string residue_id(const ResidueLabel& residue) {
+  return residue.chain + ":" + std::to_string(residue.number) + residue.insertion_code;
+}
+
+const std::vector<std::string>& octant_names() {
+  static const std::vector<std::string> names{"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z",
+                                              "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"};
+  return names;
+}
+
+Globe make_globe(const Mesh& surface, const std::vector<Vec3>& sphere, std::vector<SurfaceProperty> properties,
+                 std::string name) {
+  if (sphere.size() != surface.vertex_count())
+    throw std::invalid_argument("make_globe: " + std::to_string(sphere.size()) + " globe points for " +
+                                std::to_string(surface.vertex_count()) + " surface vertices");
+  for (const auto& p : properties)
+    if (p.values.size() != surface.vertex_count())
+      throw std::invalid_argument("make_globe: property " + p.info.name + " has " + std::to_string(p.values.size()) +
+                                  " values for " + std::to_string(surface.vertex_count()) + " vertices");
+  Globe globe;
+  globe.name = std::move(name);
+  globe.surface = surface.positions;
+  globe.sphere = sphere;
+  globe.triangles = surface.triangles;
+  add_residues(surface, globe);
+  globe.properties = std::move(properties);
+  return globe;
+}
+
+const SurfaceProperty* find_globe_property(const Globe& globe, std::string_view name) {
+  for (const auto& p : globe.properties)
+    if (p.info.name == name) return &p;
+  return nullptr;
+}
+
+std::string property_names(const Globe& globe) {
+  std::string names;
+  for (const auto& p : globe.properties) names += (names.empty() ? "" : ", ") + p.info.name;
+  return names.empty() ? "(none)" : names;
+}
+
+std::vector<SurfaceProperty> properties_from_attributes(const Mesh& surface, const std::vector<Vec3>& sphere) {
+  std::vector<SurfaceProperty> properties{octant_property(sphere)};
+  if (const TextAttribute* chain = text_attribute(surface, attributes::kChain))
+    properties.push_back(chain_property(surface, *chain));
+  Globe residues;
+  add_residues(surface, residues);
+  if (!residues.residues.empty()) properties.push_back(sequence_property(residues));
+  if (const auto* number = attribute(surface.integer_attributes, attributes::kResidueNumber))
+    properties.push_back(copied_property("residue_number", "", ScaleKind::sequential, *number, "structure"));
+  if (const auto* b = attribute(surface.real_attributes, attributes::kBFactor))
+    properties.push_back(copied_property("b_factor", "Å²", ScaleKind::sequential, *b, "structure"));
+  if (const auto* charge = attribute(surface.real_attributes, attributes::kCharge))
+    properties.push_back(copied_property("charge", "e", ScaleKind::diverging, *charge, "PQR"));
+  return properties;
+}
+
+}  // namespace spheremap

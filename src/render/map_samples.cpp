@@ -1,0 +1,143 @@
+// Sampling a globe through a projection: the pixels of a map and the cells of its numeric grid (see
+// map_picture.hpp).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "../util/parallel.hpp"
+#include "spheremap/render/colour_scale.hpp"
+#include "spheremap/render/map_picture.hpp"
+
+namespace spheremap {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The plane point at (column + fx, row + fy) of a width x height image of the projection's rectangle.
+PlanePoint plane_point(const PlanePoint& half, int width, int height, double column, double row) {
+  return {(column / width * 2 - 1) * half.x, (1 - row / height * 2) * half.y};
+}
+
+}  // namespace
+
+MapSamples sample_map(const SphereLocator& locator, Projection projection, int width, int height, int threads) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("sample_map: the image must have a positive size");
+  MapSamples samples{projection, width, height, {}, {}};
+  const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  samples.triangle.assign(pixels, -1);
+  samples.weights.assign(pixels, {0, 0, 0});
+  const PlanePoint half = projection_half_extent(projection);
+  detail::parallel_ranges(height, 16, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
+    for (auto row = static_cast<int>(first); row < last; ++row)
+      for (int column = 0; column < width; ++column) {
+        const auto at = unproject(projection, plane_point(half, width, height, column + 0.5, row + 0.5));
+        if (!at) continue;
+        const SphereHit hit = locate_on_sphere(locator, direction_of(*at));
+        const std::size_t i = static_cast<std::size_t>(row) * width + column;
+        samples.triangle[i] = hit.triangle;
+        samples.weights[i] = {static_cast<float>(hit.weights[0]), static_cast<float>(hit.weights[1]),
+                              static_cast<float>(hit.weights[2])};
+      }
+  });
+  return samples;
+}
+
+double value_at(const Globe& globe, const SurfaceProperty& property, std::int32_t triangle,
+                const std::array<float, 3>& weights) {
+  if (triangle < 0) return kNaN;
+  const Triangle& t = globe.triangles[triangle];
+  const int nearest = weights[1] > weights[0] ? (weights[2] > weights[1] ? 2 : 1) : (weights[2] > weights[0] ? 2 : 0);
+  const double nearest_value = property.values[t[nearest]];
+  if (property.info.scale == ScaleKind::categorical || std::isnan(nearest_value)) return nearest_value;
+  double sum = 0, weight = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double v = property.values[t[k]];
+    if (std::isnan(v)) continue;
+    sum += weights[k] * v;
+    weight += weights[k];
+  }
+  return sum / weight;  // weight > 0: the nearest corner has a value
+}
+
+ValueRange picture_range(const SurfaceProperty& property, const std::optional<ValueRange>& requested) {
+  if (requested) return *requested;
+  if (property.info.default_range) return *property.info.default_range;
+  const std::vector<float> values(property.values.begin(), property.values.end());
+  return data_range(property.info.scale, values);
+}
+
+namespace {
+
+struct CellSummary {
+  double value = kNaN;
+  std::set<std::int32_t> residues;
+};
+
+CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
+                           Projection projection, const PlanePoint& half, int columns, int rows, int row,
+                           int column) {
+  constexpr int kSub = 4;
+  CellSummary cell;
+  double sum = 0;
+  int count = 0;
+  std::map<double, int> classes;
+  for (int sy = 0; sy < kSub; ++sy)
+    for (int sx = 0; sx < kSub; ++sx) {
+      const auto at = unproject(projection, plane_point(half, columns, rows, column + (sx + 0.5) / kSub,
+                                                        row + (sy + 0.5) / kSub));
+      if (!at) continue;
+      const SphereHit hit = locate_on_sphere(locator, direction_of(*at));
+      if (hit.triangle < 0) continue;
+      const std::int32_t vertex = globe.triangles[hit.triangle][hit.nearest_corner()];
+      if (!globe.vertex_residue.empty() && globe.vertex_residue[vertex] >= 0)
+        cell.residues.insert(globe.vertex_residue[vertex]);
+      const double v = value_at(globe, property, hit.triangle,
+                                {static_cast<float>(hit.weights[0]), static_cast<float>(hit.weights[1]),
+                                 static_cast<float>(hit.weights[2])});
+      if (std::isnan(v)) continue;
+      if (property.info.scale == ScaleKind::categorical) ++classes[v];
+      sum += v, ++count;
+    }
+  if (property.info.scale == ScaleKind::categorical) {
+    int best = 0;
+    for (const auto& [value, n] : classes)
+      if (n > best) best = n, cell.value = value;
+  } else if (count > 0) {
+    cell.value = sum / count;
+  }
+  return cell;
+}
+
+}  // namespace
+
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
+                         Projection projection, int columns, int rows) {
+  if (columns <= 0 || rows <= 0) throw std::invalid_argument("map_grid_tsv: the grid must have cells");
+  const PlanePoint half = projection_half_extent(projection);
+  std::vector<std::string> lines(static_cast<std::size_t>(rows));
+  detail::parallel_ranges(rows, 4, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
+    for (auto row = static_cast<int>(first); row < last; ++row)
+      for (int column = 0; column < columns; ++column) {
+        const auto centre = unproject(projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
+        if (!centre) continue;
+        const CellSummary cell =
+            summarize_cell(globe, property, locator, projection, half, columns, rows, row, column);
+        std::string residues;
+        for (const std::int32_t r : cell.residues)
+          residues += (residues.empty() ? "" : ",") + residue_id(globe.residues[r]);
+        lines[row] += fmt::format("{}\t{}\t{}\t{}\t{}\t{}\n", row, column, centre->latitude / kDegree,
+                                  centre->longitude / kDegree, std::isnan(cell.value) ? "" : fmt::format("{}", cell.value),
+                                  residues);
+      }
+  });
+  std::string tsv = "row\tcolumn\tlatitude\tlongitude\tvalue\tresidues\n";
+  for (const auto& line : lines) tsv += line;
+  return tsv;
+}
+
+}  // namespace spheremap
