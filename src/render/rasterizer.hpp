@@ -1,0 +1,33 @@
+// Private to src/render: a small software rasterizer for the hemisphere pictures. Triangles already in
+// screen space (x right, y down, in samples; z larger = nearer) go into a depth buffer that keeps, per
+// sample, the nearest triangle; shading happens afterwards, once per visible sample.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "spheremap/mesh.hpp"
+
+namespace spheremap::render_detail {
+
+/// The nearest triangle at each sample (-1: background) and its depth.
+struct IdBuffer {
+  int width = 0, height = 0;
+  std::vector<float> depth;
+  std::vector<std::int32_t> triangle;
+};
+
+/// A buffer of width x height samples, all background.
+IdBuffer make_id_buffer(int width, int height);
+
+/// Draws every triangle of `triangles` (indices into `screen`) that faces the viewer (counter-clockwise on
+/// screen as seen with y up, i.e. clockwise in y-down sample coordinates) into `buffer`, keeping the
+/// nearest at each sample centre. Samples on an edge belong to both triangles, so no sample between two
+/// triangles is missed; the nearer one, then the lower index, wins.
+void rasterize(const std::vector<Vec3>& screen, const std::vector<Triangle>& triangles, IdBuffer& buffer);
+
+/// The barycentric weights of the sample centre (x + 0.5, y + 0.5) in screen triangle (a, b, c) (may be
+/// slightly outside [0, 1] on edges: clamp before use).
+std::array<double, 3> screen_weights(const Vec3& a, const Vec3& b, const Vec3& c, double x, double y);
+
+}  // namespace spheremap::render_detail
