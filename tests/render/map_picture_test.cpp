@@ -1,0 +1,332 @@
+// Projections (round trip, PROJ as the oracle), the point location on the globe, map figures (bands of a
+// property equal to z, the pixel under a vertex, size, determinism), the TSV grid and hemisphere figures.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "../test_support.hpp"
+#include "spheremap/error.hpp"
+#include "spheremap/render/colour_scale.hpp"
+#include "spheremap/render/hemispheres.hpp"
+#include "spheremap/render/map_picture.hpp"
+#include "spheremap/render/plot.hpp"
+#include "spheremap/shapes/shapes.hpp"
+
+namespace spheremap {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr std::array<Projection, 3> kProjections{Projection::mollweide, Projection::equirectangular,
+                                                 Projection::sinusoidal};
+
+Vec3 unit(const Vec3& v) {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return {v[0] / n, v[1] / n, v[2] / n};
+}
+
+TEST(Projection, ForwardThenInverseReturnsThePoint) {
+  for (const Projection projection : kProjections)
+    for (int lat = -89; lat <= 89; lat += 7)
+      for (int lon = -179; lon <= 179; lon += 11) {
+        const GeoPoint p{lat * kDegree, lon * kDegree};
+        const auto back = unproject(projection, project(projection, p));
+        ASSERT_TRUE(back) << to_string(projection) << " " << lat << " " << lon;
+        EXPECT_NEAR(back->latitude, p.latitude, 1e-9) << to_string(projection) << " " << lat << " " << lon;
+        EXPECT_NEAR(back->longitude, p.longitude, 1e-9) << to_string(projection) << " " << lat << " " << lon;
+      }
+}
+
+TEST(Projection, PointsOutsideTheMapHaveNoGlobePoint) {
+  EXPECT_FALSE(unproject(Projection::mollweide, {2.8, 1.3}));           // beyond the ellipse's corner
+  EXPECT_FALSE(unproject(Projection::sinusoidal, {3.0, 1.2}));          // beyond the sinusoid
+  EXPECT_FALSE(unproject(Projection::equirectangular, {3.2, 0}));       // beyond ±180°
+  EXPECT_TRUE(unproject(Projection::mollweide, {0, std::sqrt(2.0)}));   // the north pole
+  const auto edge = unproject(Projection::mollweide, {2 * std::sqrt(2.0), 0});
+  ASSERT_TRUE(edge);
+  EXPECT_NEAR(edge->longitude, kPi, 1e-12);
+}
+
+TEST(Projection, NamesRoundTrip) {
+  for (const Projection projection : kProjections) EXPECT_EQ(parse_projection(to_string(projection)), projection);
+  EXPECT_EQ(parse_projection("flamsteed"), Projection::sinusoidal);
+  EXPECT_FALSE(parse_projection("mercator"));
+}
+
+// PROJ's `proj` program on the unit sphere: "lon lat" in degrees in, "x y" out.
+std::vector<PlanePoint> proj_oracle(const std::string& definition, const std::vector<GeoPoint>& points) {
+  const std::filesystem::path input = std::filesystem::temp_directory_path() /
+                                      ("spheremap-proj-" + std::to_string(::getpid()) + ".txt");
+  std::string text;
+  for (const GeoPoint& p : points) text += fmt::format("{:.12f} {:.12f}\n", p.longitude / kDegree, p.latitude / kDegree);
+  testing_support::write_text(input, text);
+  const std::string command = "proj " + definition + " -f %.12f " + input.string();
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  std::vector<PlanePoint> out;
+  if (pipe == nullptr) return out;
+  double x = 0, y = 0;
+  while (std::fscanf(pipe, "%lf %lf", &x, &y) == 2) out.push_back({x, y});
+  ::pclose(pipe);
+  std::filesystem::remove(input);
+  return out;
+}
+
+TEST(Projection, AgreesWithProj) {
+  std::vector<GeoPoint> points;
+  for (int lat = -90; lat <= 90; lat += 15)
+    for (int lon = -180; lon <= 180; lon += 45) points.push_back({lat * kDegree, lon * kDegree});
+  points.push_back({89.999 * kDegree, 12.3 * kDegree});
+  points.push_back({-37.7 * kDegree, -101.1 * kDegree});
+  const std::array<std::string, 3> definitions{"+proj=moll +R=1", "+proj=eqc +R=1", "+proj=sinu +R=1"};
+  for (std::size_t k = 0; k < kProjections.size(); ++k) {
+    const auto expected = proj_oracle(definitions[k], points);
+    ASSERT_EQ(expected.size(), points.size()) << "`proj` (PROJ, Debian proj-bin) must be installed: "
+                                              << "scripts/install-deps.sh installs it";
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const PlanePoint got = project(kProjections[k], points[i]);
+      // At the poles PROJ's Mollweide stops its iteration early (x ~ 1e-5 where the pole's x is 0): y only.
+      const bool pole = std::abs(points[i].latitude) == kPi / 2;
+      if (!(pole && kProjections[k] == Projection::mollweide))
+        EXPECT_NEAR(got.x, expected[i].x, 1e-9) << definitions[k] << " point " << i;
+      EXPECT_NEAR(got.y, expected[i].y, 1e-9) << definitions[k] << " point " << i;
+    }
+  }
+}
+
+TEST(SphereLocator, FindsTheTriangleUnderRandomPointsPolesAndTheSeam) {
+  const Mesh sphere = make_icosphere(4);
+  const SphereLocator locator = make_sphere_locator(sphere.positions, sphere.triangles);
+  std::mt19937 random(7);
+  std::normal_distribution<double> normal;
+  std::vector<Vec3> points{{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {1, -1e-17, 0}, {1, 1e-17, 0.3}, {0.5, -1e-300, -0.5}};
+  for (int k = 0; k < 20000; ++k) points.push_back({normal(random), normal(random), normal(random)});
+  for (const Vec3& point : points) {
+    const Vec3 p = unit(point);
+    const SphereHit hit = locate_on_sphere(locator, point);
+    ASSERT_GE(hit.triangle, 0);
+    // The weights put the point on the triangle's plane along the ray from the centre.
+    Vec3 q{0, 0, 0};
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GE(hit.weights[c], 0);
+      for (int i = 0; i < 3; ++i) q[i] += hit.weights[c] * locator.vertices[locator.triangles[hit.triangle][c]][i];
+    }
+    const Vec3 qu = unit(q);
+    EXPECT_NEAR(qu[0], p[0], 1e-9);
+    EXPECT_NEAR(qu[1], p[1], 1e-9);
+    EXPECT_NEAR(qu[2], p[2], 1e-9);
+  }
+}
+
+TEST(SphereLocator, RefusesAnIndexOutOfRange) {
+  EXPECT_THROW(make_sphere_locator({{1, 0, 0}}, {{0, 1, 2}}), std::invalid_argument);
+}
+
+// An icosphere with properties: z of the globe point (sequential) and the octant.
+Globe test_globe(int levels) {
+  const Mesh sphere = make_icosphere(levels);
+  std::vector<Vec3> unit_sphere;
+  for (const Vec3& p : sphere.positions) unit_sphere.push_back(unit(p));
+  SurfaceProperty z{{"z", "", ScaleKind::sequential, ValueRange{-1, 1}, {}}, "test", {}};
+  for (const Vec3& p : unit_sphere) z.values.push_back(p[2]);
+  std::vector<SurfaceProperty> properties = properties_from_attributes(sphere, unit_sphere);
+  properties.push_back(z);
+  return make_globe(sphere, unit_sphere, properties, "icosphere");
+}
+
+TEST(MapSamples, APropertyEqualToZGivesHorizontalBandsOnEveryProjection) {
+  const Globe globe = test_globe(5);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  const SurfaceProperty& z = *find_globe_property(globe, "z");
+  for (const Projection projection : kProjections) {
+    const int width = 400, height = 200;
+    const MapSamples samples = sample_map(locator, projection, width, height, 2);
+    int on_map = 0;
+    for (int row = 0; row < height; ++row) {
+      // Every pixel of a row: the value is sin(latitude of the row), up to the flat triangles' error.
+      for (int column = 0; column < width; ++column) {
+        const std::size_t i = static_cast<std::size_t>(row) * width + column;
+        if (samples.triangle[i] < 0) continue;
+        ++on_map;
+        const double latitude = (1 - (row + 0.5) / height * 2) * projection_half_extent(projection).y;
+        const double expected =
+            projection == Projection::mollweide
+                ? std::sin(unproject(projection, {0, latitude})->latitude)
+                : std::sin(latitude);
+        EXPECT_NEAR(value_at(globe, z, samples.triangle[i], samples.weights[i]), expected, 2e-3)
+            << to_string(projection) << " row " << row << " column " << column;
+      }
+    }
+    // No gaps: every pixel centre inside the projection's outline has a triangle.
+    int inside = 0;
+    const PlanePoint half = projection_half_extent(projection);
+    for (int row = 0; row < height; ++row)
+      for (int column = 0; column < width; ++column)
+        inside += unproject(projection, {((column + 0.5) / width * 2 - 1) * half.x,
+                                         (1 - (row + 0.5) / height * 2) * half.y})
+                      .has_value();
+    EXPECT_EQ(on_map, inside) << to_string(projection);
+    EXPECT_GT(on_map, width * height / 2) << to_string(projection);
+  }
+}
+
+TEST(MapSamples, DoNotDependOnTheThreadCount) {
+  const Globe globe = test_globe(3);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  const MapSamples one = sample_map(locator, Projection::mollweide, 300, 150, 1);
+  const MapSamples two = sample_map(locator, Projection::mollweide, 300, 150, 2);
+  EXPECT_EQ(one.triangle, two.triangle);
+  EXPECT_EQ(one.weights, two.weights);
+}
+
+MapFigureOptions small_figure(Projection projection, ImageFormat format = ImageFormat::png) {
+  MapFigureOptions options;
+  options.width = 800;
+  options.height = 460;
+  options.format = format;
+  (void)projection;
+  return options;
+}
+
+class MapFigureFiles : public testing_support::FolderTest {};
+
+TEST_F(MapFigureFiles, ThePixelUnderAVertexHasItsColourAndTheImageHasTheRequestedSize) {
+  const Globe globe = test_globe(4);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  const SurfaceProperty& z = *find_globe_property(globe, "z");
+  for (const Projection projection : kProjections) {
+    const MapFigureOptions options = small_figure(projection);
+    const auto size = map_image_size(options);
+    const auto origin = map_image_origin(options);
+    const MapSamples samples = sample_map(locator, projection, size[0], size[1]);
+    const std::filesystem::path path = folder_ / "z.png";
+    testing_support::write_text(path, map_figure(globe, z, samples, options));
+    const RgbImage image = read_png(path);
+    ASSERT_EQ(image.width, options.width);
+    ASSERT_EQ(image.height, options.height);
+    const PlanePoint half = projection_half_extent(projection);
+    int checked = 0;
+    for (std::size_t v = 0; v < globe.sphere.size(); v += 37) {
+      const GeoPoint g = geo_point_of(globe.sphere[v]);
+      // Away from the graticule lines (every 30°) and the map's edge, which are drawn over the colours.
+      const auto near_line = [](double degrees) { return std::abs(std::remainder(degrees, 30.0)) < 4; };
+      if (near_line(g.latitude / kDegree) || near_line(g.longitude / kDegree) || std::abs(g.latitude) > 75 * kDegree ||
+          std::abs(g.longitude) > 160 * kDegree)
+        continue;
+      const PlanePoint p = project(projection, g);
+      const int column = static_cast<int>(std::floor((p.x / half.x + 1) / 2 * size[0]));
+      const int row = static_cast<int>(std::floor((1 - p.y / half.y) / 2 * size[1]));
+      const std::size_t pixel = (static_cast<std::size_t>(origin[1] + row) * image.width + origin[0] + column) * 3;
+      const Rgb8 expected = colour_of(ScaleKind::sequential, {-1, 1}, z.values[v]);
+      // The pixel centre is within half a pixel of the vertex: its value differs by the slope times that.
+      EXPECT_NEAR(image.pixels[pixel], expected.r, 6) << to_string(projection) << " vertex " << v;
+      EXPECT_NEAR(image.pixels[pixel + 1], expected.g, 6) << to_string(projection) << " vertex " << v;
+      EXPECT_NEAR(image.pixels[pixel + 2], expected.b, 6) << to_string(projection) << " vertex " << v;
+      ++checked;
+    }
+    EXPECT_GT(checked, 20);
+  }
+}
+
+TEST_F(MapFigureFiles, AreNotBlankAndTheSameInputGivesTheSameBytes) {
+  const Globe globe = test_globe(3);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  for (const ImageFormat format : {ImageFormat::png, ImageFormat::svg, ImageFormat::pdf}) {
+    MapFigureOptions options = small_figure(Projection::mollweide, format);
+    const auto size = map_image_size(options);
+    const MapSamples samples = sample_map(locator, Projection::mollweide, size[0], size[1], 1);
+    const MapSamples samples2 = sample_map(locator, Projection::mollweide, size[0], size[1], 2);
+    const SurfaceProperty& octant = *find_globe_property(globe, "octant");
+    const std::string first = map_figure(globe, octant, samples, options);
+    EXPECT_EQ(first, map_figure(globe, octant, samples2, options)) << to_string(format);
+    EXPECT_GT(first.size(), 1000u);
+    if (format == ImageFormat::svg) EXPECT_NE(first.find("<svg"), std::string::npos);
+    if (format == ImageFormat::pdf) EXPECT_EQ(first.substr(0, 5), "%PDF-");
+  }
+  MapFigureOptions options = small_figure(Projection::mollweide);
+  const auto size = map_image_size(options);
+  const MapSamples samples = sample_map(locator, Projection::mollweide, size[0], size[1]);
+  testing_support::write_text(folder_ / "octant.png", map_figure(globe, *find_globe_property(globe, "octant"), samples, options));
+  const RgbImage image = read_png(folder_ / "octant.png");
+  std::set<std::array<std::uint8_t, 3>> colours;
+  for (std::size_t i = 0; i < image.pixels.size(); i += 3)
+    colours.insert({image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]});
+  EXPECT_GT(colours.size(), 50u);  // eight octant colours, text, lines and their antialiasing
+  for (int k = 0; k < 8; ++k) {
+    const Rgb8 c = colour_of(ScaleKind::categorical, {0, 255}, k);
+    EXPECT_TRUE(colours.count({c.r, c.g, c.b})) << "octant " << k;
+  }
+}
+
+TEST(MapFigure, RefusesASizeOutOfBounds) {
+  MapFigureOptions options;
+  options.width = 100;
+  options.height = 50;
+  EXPECT_THROW(map_image_size(options), InputError);
+}
+
+TEST(MapGrid, ListsCellsWithLatitudeLongitudeValueAndResidues) {
+  const Globe globe = test_globe(3);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  const std::string tsv = map_grid_tsv(globe, *find_globe_property(globe, "z"), locator, Projection::equirectangular, 36, 18);
+  std::istringstream in(tsv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "row\tcolumn\tlatitude\tlongitude\tvalue\tresidues");
+  int lines = 0;
+  while (std::getline(in, line)) {
+    double row = 0, column = 0, latitude = 0, longitude = 0, value = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf\t%lf\t%lf\t%lf\t%lf", &row, &column, &latitude, &longitude, &value), 5)
+        << line;
+    EXPECT_NEAR(latitude, 90 - (row + 0.5) * 10, 1e-9);
+    EXPECT_NEAR(longitude, -180 + (column + 0.5) * 10, 1e-9);
+    EXPECT_NEAR(value, std::sin(latitude * kDegree), 0.06) << line;  // the mean over the 10° cell
+    ++lines;
+  }
+  EXPECT_EQ(lines, 36 * 18);
+}
+
+TEST(HemisphereFigure, HasTheSizeIsNotBlankAndIsDeterministic) {
+  const Globe globe = test_globe(3);
+  HemisphereOptions options;
+  options.width = 600;
+  options.height = 640;
+  options.supersampling = 2;
+  options.threads = 1;
+  const std::string one = hemisphere_figure(globe, *find_globe_property(globe, "octant"), options);
+  options.threads = 2;
+  EXPECT_EQ(one, hemisphere_figure(globe, *find_globe_property(globe, "octant"), options));
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("spheremap-hemispheres-" + std::to_string(::getpid()) + ".png");
+  testing_support::write_text(path, one);
+  const RgbImage image = read_png(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(image.width, 600);
+  EXPECT_EQ(image.height, 640);
+  // Each octant colour appears, shaded: count pixels whose hue is near an octant colour and not grey.
+  int coloured = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); i += 3) {
+    const int r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+    if (std::max({r, g, b}) - std::min({r, g, b}) > 40) ++coloured;
+  }
+  EXPECT_GT(coloured, image.width * image.height / 10);
+  options.supersampling = 9;
+  EXPECT_THROW(hemisphere_figure(globe, *find_globe_property(globe, "octant"), options), InputError);
+}
+
+TEST(HemisphereViews, LookAlongTheAxisOfLeastSpread) {
+  const Mesh ellipsoid = make_ellipsoid(3, 1, 3, 2);  // most spread along y, least along x
+  const HemisphereViews views = hemisphere_views(ellipsoid.positions);
+  EXPECT_NEAR(std::abs(views.front[1]), 1, 1e-9);  // right = ±y
+  EXPECT_NEAR(std::abs(views.front[5]), 1, 1e-9);  // up = ±z
+  EXPECT_NEAR(std::abs(views.front[6]), 1, 1e-9);  // towards = ±x
+}
+
+}  // namespace
+}  // namespace spheremap
