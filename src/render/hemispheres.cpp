@@ -21,8 +21,8 @@ namespace {
 
 using render_detail::Align;
 
-constexpr double kAmbient = 0.28;  // the light every visible point gets
-constexpr double kDiffuse = 0.72;  // times cos(angle to the light)
+constexpr double kAmbient = 0.34;  // the light every visible point gets
+constexpr double kDiffuse = 0.66;  // times cos(angle to the light)
 
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec3 cross(const Vec3& a, const Vec3& b) {
@@ -193,7 +193,7 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
   const double w = options.width, h = options.height;
   const double margin = 0.02 * h, title_size = std::max(12.0, 0.03 * h), font_size = std::max(9.0, 0.018 * h);
   const double key_height = 5.2 * font_size;
-  const double top = margin + 1.9 * title_size;
+  const double top = margin + 2.0 * title_size + 0.6 * font_size;
   const double grid_height = h - top - key_height - margin;
   const bool with_trace = !options.trace.empty();
   const int columns = with_trace ? 3 : 2;
@@ -212,7 +212,11 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
 
   // The surface fills its panel at the same scale in both views; the globe (radius 1) likewise.
   double radius = 0;
-  for (const Vec3& p : globe.surface) radius = std::max(radius, std::sqrt(dot(sub(p, views.centre), sub(p, views.centre))));
+  // The largest distance from the centre across the line of sight: the same for both views.
+  for (const Vec3& p : globe.surface) {
+    const Vec3 c = front(sub(p, views.centre));
+    radius = std::max(radius, std::hypot(c[0], c[1]));
+  }
   const double surface_scale = side / 2.0 * 0.94 / std::max(radius, 1e-9);
   const double globe_scale = side / 2.0 * 0.94;
   const std::vector<Vec3> surface_normals = vertex_normals(globe.surface, globe.triangles);
@@ -260,7 +264,7 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
   render_detail::draw_text(cr, w / 2, margin + title_size, fmt::format("{} · {} · surface and globe", globe.name,
                                                                         property.info.name), Align::centre);
   render_detail::set_font(cr, font_size * 0.9);
-  render_detail::draw_text(cr, w / 2, margin + 1.5 * title_size + 0.2 * font_size,
+  render_detail::draw_text(cr, w / 2, margin + 1.5 * title_size + 0.45 * font_size,
                            "front: along the surface's axis of least spread; back: turned 180° about the vertical",
                            Align::centre, {90, 90, 90});
   render_detail::draw_colour_key(cr, render_detail::colour_key(property, range), margin, h - margin - key_height,

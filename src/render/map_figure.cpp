@@ -29,7 +29,7 @@ MapLayout lay_out(int width, int height) {
   l.title_size = std::max(12.0, 0.034 * height);
   l.font_size = std::max(9.0, 0.021 * height);
   l.key_height = 5.2 * l.font_size;
-  const double top = l.margin + 1.8 * l.title_size;
+  const double top = l.margin + 2.0 * l.title_size + 0.6 * l.font_size;
   const double label_space = 4.5 * l.font_size;  // latitude labels left and right
   const double available_height = height - top - l.key_height - l.margin - 2.2 * l.font_size;
   const double available_width = width - 2 * (l.margin + label_space);
@@ -213,7 +213,7 @@ void draw_titles(cairo_t* cr, const Globe& globe, const SurfaceProperty& propert
   render_detail::set_font(cr, l.font_size * 0.85);
   std::string caption = "latitude and longitude of the globe superposed on the structure (north = +z)";
   if (!options.outline.empty()) caption += " · outlined: " + options.outline_label;
-  render_detail::draw_text(cr, options.width / 2.0, l.margin + 1.45 * l.title_size + 0.2 * l.font_size, caption,
+  render_detail::draw_text(cr, options.width / 2.0, l.margin + 1.5 * l.title_size + 0.45 * l.font_size, caption,
                            Align::centre, {90, 90, 90});
 }
 

@@ -73,32 +73,32 @@ ValueRange picture_range(const SurfaceProperty& property, const std::optional<Va
 
 namespace {
 
+constexpr int kGridSubsamples = 4;  // per cell side
+
 struct CellSummary {
   double value = kNaN;
   std::set<std::int32_t> residues;
 };
 
-CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
-                           Projection projection, const PlanePoint& half, int columns, int rows, int row,
+// The cell's kGridSubsamples² points are the pixels of the fine samples it covers.
+CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, const MapSamples& fine, int row,
                            int column) {
-  constexpr int kSub = 4;
   CellSummary cell;
   double sum = 0;
   int count = 0;
   std::map<double, int> classes;
-  for (int sy = 0; sy < kSub; ++sy)
-    for (int sx = 0; sx < kSub; ++sx) {
-      const auto at = unproject(projection, plane_point(half, columns, rows, column + (sx + 0.5) / kSub,
-                                                        row + (sy + 0.5) / kSub));
-      if (!at) continue;
-      const SphereHit hit = locate_on_sphere(locator, direction_of(*at));
-      if (hit.triangle < 0) continue;
-      const std::int32_t vertex = globe.triangles[hit.triangle][hit.nearest_corner()];
+  for (int sy = 0; sy < kGridSubsamples; ++sy)
+    for (int sx = 0; sx < kGridSubsamples; ++sx) {
+      const std::size_t i = static_cast<std::size_t>(row * kGridSubsamples + sy) * fine.width +
+                            static_cast<std::size_t>(column * kGridSubsamples + sx);
+      const std::int32_t triangle = fine.triangle[i];
+      if (triangle < 0) continue;
+      const auto& w = fine.weights[i];
+      const int nearest = w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
+      const std::int32_t vertex = globe.triangles[triangle][nearest];
       if (!globe.vertex_residue.empty() && globe.vertex_residue[vertex] >= 0)
         cell.residues.insert(globe.vertex_residue[vertex]);
-      const double v = value_at(globe, property, hit.triangle,
-                                {static_cast<float>(hit.weights[0]), static_cast<float>(hit.weights[1]),
-                                 static_cast<float>(hit.weights[2])});
+      const double v = value_at(globe, property, triangle, w);
       if (std::isnan(v)) continue;
       if (property.info.scale == ScaleKind::categorical) ++classes[v];
       sum += v, ++count;
@@ -115,29 +115,39 @@ CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, 
 
 }  // namespace
 
-std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
-                         Projection projection, int columns, int rows) {
-  if (columns <= 0 || rows <= 0) throw std::invalid_argument("map_grid_tsv: the grid must have cells");
-  const PlanePoint half = projection_half_extent(projection);
+MapSamples sample_grid(const SphereLocator& locator, Projection projection, int columns, int rows, int threads) {
+  if (columns <= 0 || rows <= 0) throw std::invalid_argument("sample_grid: the grid must have cells");
+  return sample_map(locator, projection, columns * kGridSubsamples, rows * kGridSubsamples, threads);
+}
+
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid) {
+  if (grid.width % kGridSubsamples != 0 || grid.height % kGridSubsamples != 0 || grid.width == 0)
+    throw std::invalid_argument("map_grid_tsv: the samples are not those of sample_grid");
+  const int columns = grid.width / kGridSubsamples, rows = grid.height / kGridSubsamples;
+  const PlanePoint half = projection_half_extent(grid.projection);
   std::vector<std::string> lines(static_cast<std::size_t>(rows));
   detail::parallel_ranges(rows, 4, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
     for (auto row = static_cast<int>(first); row < last; ++row)
       for (int column = 0; column < columns; ++column) {
-        const auto centre = unproject(projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
+        const auto centre = unproject(grid.projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
         if (!centre) continue;
-        const CellSummary cell =
-            summarize_cell(globe, property, locator, projection, half, columns, rows, row, column);
+        const CellSummary cell = summarize_cell(globe, property, grid, row, column);
         std::string residues;
         for (const std::int32_t r : cell.residues)
           residues += (residues.empty() ? "" : ",") + residue_id(globe.residues[r]);
-        lines[row] += fmt::format("{}\t{}\t{}\t{}\t{}\t{}\n", row, column, centre->latitude / kDegree,
-                                  centre->longitude / kDegree, std::isnan(cell.value) ? "" : fmt::format("{}", cell.value),
-                                  residues);
+        lines[row] += fmt::format("{}\t{}\t{:.3f}\t{:.3f}\t{}\t{}\n", row, column, centre->latitude / kDegree,
+                                  centre->longitude / kDegree,
+                                  std::isnan(cell.value) ? "" : fmt::format("{:.6g}", cell.value), residues);
       }
   });
   std::string tsv = "row\tcolumn\tlatitude\tlongitude\tvalue\tresidues\n";
   for (const auto& line : lines) tsv += line;
   return tsv;
+}
+
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
+                         Projection projection, int columns, int rows) {
+  return map_grid_tsv(globe, property, sample_grid(locator, projection, columns, rows));
 }
 
 }  // namespace spheremap

@@ -35,7 +35,7 @@ struct HemisphereOptions {
   int width = 1600, height = 1600;  // the whole figure, pixels (SVG/PDF: points)
   ImageFormat format = ImageFormat::png;
   std::optional<ValueRange> range;  // the colour range (default: picture_range)
-  int supersampling = 3;            // samples per pixel along each axis (antialiasing)
+  int supersampling = 2;            // samples per pixel along each axis (antialiasing)
   /// When not empty: a fifth panel, the trace seen from the front view (the paper's Figure 8a).
   std::vector<TracePath> trace;
   int threads = 0;

@@ -68,11 +68,19 @@ std::string map_figure(const Globe& globe, const SurfaceProperty& property, cons
 
 /// The numeric grid of a map: the projection's bounding rectangle in `columns` x `rows` cells (cells whose
 /// centre is off the map left out), one line per cell: row, column, latitude and longitude of its centre
-/// (degrees), value (mean of the property at 4 x 4 points of the cell; categorical: the most frequent class,
+/// (degrees, 3 decimals), value (mean of the property at 4 x 4 points of the cell; categorical: the most frequent class,
 /// the smallest of equals; empty if none has a value) and the residues under those points (the nearest
 /// vertex's residue, "A:45,A:46", in chain and number order). Tab-separated, a header line first.
 /// Preconditions: columns, rows > 0. Throws std::invalid_argument otherwise.
 std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
                          Projection projection, int columns = 360, int rows = 180);
+
+/// The same from samples taken once for every property: `grid` from sample_grid (4 x 4 samples a cell).
+/// Throws std::invalid_argument if `grid` is not of that shape.
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid);
+
+/// The samples of a columns x rows grid for map_grid_tsv (sample_map at 4 x 4 points a cell).
+/// Throws std::invalid_argument if a side is not positive.
+MapSamples sample_grid(const SphereLocator& locator, Projection projection, int columns, int rows, int threads = 0);
 
 }  // namespace spheremap
