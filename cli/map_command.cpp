@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "pictures.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/pipeline/output_folder.hpp"
@@ -24,6 +25,7 @@ struct MapCommand {
   std::string input, output, poles, components = "outer";
   MapCliOptions map;
   bool quiet = false, force = false;
+  bool no_pictures = false;
   void add(CLI::App* command);
   int run();
 };
@@ -57,9 +59,11 @@ int map_every_component(const MapCommand& s) {
   print_warnings(s.input, results.front());
   if (s.force) remove_map_outputs(s.output);
   try {
-    for (const auto& result : results)
-      write_map_outputs(std::filesystem::path(s.output) / fmt::format("component-{}", result.component_index), result,
-                        s.map.job);
+    for (const auto& result : results) {
+      const auto folder = std::filesystem::path(s.output) / fmt::format("component-{}", result.component_index);
+      write_map_outputs(folder, result, s.map.job);
+      if (!s.no_pictures) write_pictures(folder, result);
+    }
   } catch (const Error&) {
     remove_map_outputs(s.output);  // no partial output: the components written so far go too
     throw;
@@ -85,6 +89,7 @@ int map_one(const MapCommand& s) {
   print_warnings(s.input, result);
   if (s.force) remove_map_outputs(s.output);
   write_map_outputs(s.output, result, s.map.job);
+  if (!s.no_pictures) write_pictures(s.output, result);
   const auto& c = result.map.certificate;
   if (!s.quiet || !c.certified()) std::cout << summary_text(result);
   if (c.certified()) return 0;
@@ -104,7 +109,10 @@ void MapCommand::add(CLI::App* command) {
                       "Mesh file: .obj .off .ply (ASCII/binary) .stl (ASCII/binary); or structure file: .pdb .ent "
                       ".cif .mmcif (also .gz) .pqr")
       ->required();
-  add_output_option(command, output, "Output folder: surface.ply, sphere.ply, report.json");
+  add_output_option(command, output,
+                    "Output folder: surface.ply, sphere.ply, report.json, pictures/ (maps and hemisphere figures), "
+                    "index.html (the viewer)");
+  command->add_flag("--no-pictures", no_pictures, "Write no pictures/ and no index.html (only the map and report)");
   command->add_option("--poles", poles,
                       "North and south pole vertices 'i,j': 0-based indices in the input file's vertex order, at "
                       "least 3 edges apart; default: the two vertices farthest apart");

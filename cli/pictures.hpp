@@ -1,0 +1,19 @@
+// The pictures and viewer `spheremap map` writes beside a map (OUTPUT/pictures/, OUTPUT/index.html).
+#pragma once
+
+#include <filesystem>
+
+#include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/render/globe.hpp"
+
+namespace spheremap::cli {
+
+/// The globe of a finished map job: its prepared mesh and superposed sphere, with the job's properties
+/// (MapJobResult::properties; until the registry fills them, those render computes from the surface's atom
+/// attributes), named after the input file. Throws as make_globe.
+Globe globe_of(const MapJobResult& result);
+
+/// Writes `folder`/pictures/ and `folder`/index.html for `result` (write_map_pictures). Throws as it.
+void write_pictures(const std::filesystem::path& folder, const MapJobResult& result);
+
+}  // namespace spheremap::cli
