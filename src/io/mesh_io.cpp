@@ -170,4 +170,26 @@ PolygonSoup read_polygon_soup(const std::filesystem::path& path) {
   return soup;
 }
 
+Mesh read_ply_mesh(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const std::string bytes = read_whole_file(path, file);
+  if (bytes.empty()) fail(file, "the file is empty", "write it again");
+  io_detail::PlyVertexAttributes attributes;
+  PolygonSoup soup = io_detail::read_ply(bytes, file, &attributes);
+  check_soup(soup, file, 0);
+  Mesh mesh;
+  mesh.positions = std::move(soup.positions);
+  mesh.triangles.reserve(soup.faces.size());
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    if (soup.faces[f].size() != 3)
+      fail(file, fmt::format("face {} has {} corners, not 3", f, soup.faces[f].size()),
+           "give a PLY file that spheremap wrote (surface.ply or sphere.ply)");
+    mesh.triangles.push_back({soup.faces[f][0], soup.faces[f][1], soup.faces[f][2]});
+  }
+  mesh.real_attributes = std::move(attributes.real);
+  mesh.integer_attributes = std::move(attributes.integer);
+  mesh.text_attributes = std::move(attributes.text);
+  return mesh;
+}
+
 }  // namespace spheremap

@@ -338,10 +338,27 @@ std::string plural_name(const PlyElement& element) {
        "re-export the mesh");
 }
 
-/// Reads the body element by element; `Values` is BinaryValues or AsciiValues.
+/// Reads the body element by element; `Values` is BinaryValues or AsciiValues. With `attributes`, the vertex
+/// element's other scalar properties and its lists of uchar (text) are kept there too.
 template <typename Values>
-PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& values, const std::string& file) {
+PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& values, const std::string& file,
+                      PlyVertexAttributes* attributes = nullptr) {
   PolygonSoup soup;
+  if (attributes != nullptr) {
+    const PlyElement& vertices = header.elements[layout.vertex_element];
+    for (std::size_t p = 0; p < vertices.properties.size(); ++p) {
+      const PlyProperty& property = vertices.properties[p];
+      if (p == layout.coordinate_property[0] || p == layout.coordinate_property[1] ||
+          p == layout.coordinate_property[2])
+        continue;
+      if (property.is_list && property.type == PlyType::kUint8)
+        attributes->text[property.name];
+      else if (!property.is_list && is_integer_type(property.type))
+        attributes->integer[property.name];
+      else if (!property.is_list)
+        attributes->real[property.name];
+    }
+  }
   const std::uint64_t vertex_count = header.elements[layout.vertex_element].count;
   for (std::size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
@@ -373,7 +390,19 @@ PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& 
             fail(file, fmt::format("{} {} has a list '{}' of negative length {}", element.name, i, property.name, length),
                  "the file is corrupt; re-export the mesh");
           }
-          if (is_face && p == layout.index_property) {
+          if (is_vertex && attributes != nullptr && property.type == PlyType::kUint8) {
+            std::string text;
+            for (std::int64_t c = 0; c < length; ++c) {
+              std::int64_t byte = 0;
+              if (!values.read_integer(property.type, byte)) fail_truncated(file, element, i);
+              text.push_back(static_cast<char>(byte));
+            }
+            TextAttribute& attribute = attributes->text[property.name];
+            auto [found, inserted] =
+                attributes->text_codes[property.name].try_emplace(text, static_cast<std::int32_t>(attribute.dictionary.size()));
+            if (inserted) attribute.dictionary.push_back(text);
+            attribute.codes.push_back(found->second);
+          } else if (is_face && p == layout.index_property) {
             std::vector<std::int32_t> corners;
             corners.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(
                 static_cast<std::uint64_t>(length), values.remaining() / size_of(property.type))));
@@ -398,6 +427,14 @@ PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& 
                                    : p == layout.coordinate_property[1] ? 1
                                                                         : 2;
           if (!values.read_real(property.type, position[axis])) fail_truncated(file, element, i);
+        } else if (is_vertex && attributes != nullptr && is_integer_type(property.type)) {
+          std::int64_t value = 0;
+          if (!values.read_integer(property.type, value)) fail_truncated(file, element, i);
+          attributes->integer[property.name].push_back(static_cast<std::int32_t>(value));
+        } else if (is_vertex && attributes != nullptr) {
+          double value = 0;
+          if (!values.read_real(property.type, value)) fail_truncated(file, element, i);
+          attributes->real[property.name].push_back(value);
         } else if (!values.skip(property.type, 1)) {
           fail_truncated(file, element, i);
         }
@@ -410,7 +447,7 @@ PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& 
 
 }  // namespace
 
-PolygonSoup read_ply(std::string_view bytes, const std::string& file) {
+PolygonSoup read_ply(std::string_view bytes, const std::string& file, PlyVertexAttributes* attributes) {
   const PlyHeader header = parse_header(bytes, file);
   const PlyLayout layout = find_layout(header, file);
   if (header.elements[layout.vertex_element].count >
@@ -422,10 +459,12 @@ PolygonSoup read_ply(std::string_view bytes, const std::string& file) {
   if (header.format == PlyFormat::kAscii) {
     require_text(bytes.substr(header.body_offset), file, "PLY (format ascii)", bytes, header.body_offset);
     AsciiValues values(bytes, header.body_offset, file);
-    return read_body(header, layout, values, file);
+    return read_body(header, layout, values, file, attributes);
   }
   BinaryValues values(bytes.substr(header.body_offset), header.format == PlyFormat::kBinaryBigEndian);
-  return read_body(header, layout, values, file);
+  return read_body(header, layout, values, file, attributes);
 }
+
+PolygonSoup read_ply(std::string_view bytes, const std::string& file) { return read_ply(bytes, file, nullptr); }
 
 }  // namespace spheremap::io_detail

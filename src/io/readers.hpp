@@ -9,6 +9,8 @@
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <vector>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -20,6 +22,18 @@ namespace spheremap::io_detail {
 PolygonSoup read_obj(std::string_view bytes, const std::string& file);
 PolygonSoup read_off(std::string_view bytes, const std::string& file);
 PolygonSoup read_ply(std::string_view bytes, const std::string& file);
+
+/// The vertex element's properties other than x, y, z, by name: integer types, floating-point types, and
+/// lists of uchar (text); other lists are skipped. `text_codes` is the dictionary being built.
+struct PlyVertexAttributes {
+  std::map<std::string, std::vector<double>> real;
+  std::map<std::string, std::vector<std::int32_t>> integer;
+  std::map<std::string, TextAttribute> text;
+  std::map<std::string, std::map<std::string, std::int32_t>> text_codes;
+};
+
+/// read_ply keeping the vertex attributes in `attributes` (nullptr: none).
+PolygonSoup read_ply(std::string_view bytes, const std::string& file, PlyVertexAttributes* attributes);
 PolygonSoup read_stl(std::string_view bytes, const std::string& file);
 
 /// Throws InputError with the message "<file>: <problem>; <fix>".

@@ -16,4 +16,11 @@ namespace spheremap {
 /// of an unknown extension, has an index out of range, a non-finite coordinate, or no faces.
 PolygonSoup read_polygon_soup(const std::filesystem::path& path);
 
+/// Reads a triangle mesh written by write_ply (io/ply.hpp) back with its per-vertex attributes: every
+/// scalar vertex property but x, y, z (integer types into integer_attributes, float and double into
+/// real_attributes) and every `list uchar uchar` vertex property (text_attributes). Other lists are
+/// skipped. Throws InputError naming the file if it cannot be read as read_polygon_soup says, or if a face
+/// is not a triangle.
+Mesh read_ply_mesh(const std::filesystem::path& path);
+
 }  // namespace spheremap
