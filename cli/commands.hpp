@@ -33,5 +33,8 @@ Command add_surface_command(CLI::App& app);
 Command add_generate_command(CLI::App& app);
 Command add_batch_command(CLI::App& app);
 Command add_table_command(CLI::App& app);
+Command add_render_command(CLI::App& app);
+Command add_view_command(CLI::App& app);
+Command add_locate_command(CLI::App& app);
 
 }  // namespace spheremap::cli

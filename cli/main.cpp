@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
       spheremap::cli::add_generate_command(app),
       spheremap::cli::add_batch_command(app),
       spheremap::cli::add_table_command(app),
+      spheremap::cli::add_render_command(app),
+      spheremap::cli::add_view_command(app),
+      spheremap::cli::add_locate_command(app),
   };
 
   try {

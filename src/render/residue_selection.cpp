@@ -87,11 +87,15 @@ std::vector<std::int32_t> select_residues(const Globe& globe, const std::vector<
     bool any = false;
     for (std::size_t r = 0; r < globe.residues.size(); ++r)
       if (in_range(globe.residues[r], range)) selected.push_back(static_cast<std::int32_t>(r)), any = true;
-    if (!any)
-      throw InputError(fmt::format("{}: no residue {}:{}{}-{}{} is on the mapped surface (chains there: {}); "
-                                   "buried residues have no place on the map",
-                                   option, range.chain, range.first, range.first_insertion, range.last,
-                                   range.last_insertion, fmt::join(chains, ", ")));
+    if (!any) {
+      const bool single = range.first == range.last && range.first_insertion == range.last_insertion;
+      const std::string item = single ? fmt::format("{}:{}{}", range.chain, range.first, range.first_insertion)
+                                      : fmt::format("{}:{}{}-{}{}", range.chain, range.first, range.first_insertion,
+                                                    range.last, range.last_insertion);
+      throw InputError(fmt::format("{}: no residue {} is on the mapped surface (chains there: {}); buried residues "
+                                   "have no place on the map",
+                                   option, item, fmt::join(chains, ", ")));
+    }
   }
   std::sort(selected.begin(), selected.end());
   selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
