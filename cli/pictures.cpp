@@ -3,11 +3,15 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "spheremap/error.hpp"
+#include "spheremap/molecule/structure.hpp"
 #include "spheremap/render/map_pictures.hpp"
 #include "spheremap/render/viewer_data.hpp"
 
@@ -39,6 +43,57 @@ Globe globe_of(const MapFolder& folder) {
     throw InputError(fmt::format("{}: the map's files do not fit together ({}); map again", folder.folder.string(),
                                  e.what()));
   }
+}
+
+std::vector<TracePath> backbone_trace(const Globe& globe, const SurfaceProperty& property,
+                                      const std::filesystem::path& structure) {
+  const Molecule molecule = read_structure(structure);
+  // Mean value of each residue over its vertices.
+  std::vector<double> sum(globe.residues.size(), 0.0);
+  std::vector<int> count(globe.residues.size(), 0);
+  for (std::size_t v = 0; v < globe.vertex_residue.size(); ++v) {
+    const std::int32_t r = globe.vertex_residue[v];
+    if (r >= 0 && !std::isnan(property.values[v])) sum[r] += property.values[v], ++count[r];
+  }
+  std::map<std::tuple<std::string, std::int32_t, std::string>, double> residue_value;
+  for (std::size_t r = 0; r < globe.residues.size(); ++r)
+    if (count[r] > 0) {
+      const ResidueLabel& l = globe.residues[r];
+      residue_value[{l.chain, l.number, l.insertion_code}] = sum[r] / count[r];
+    }
+  std::vector<TracePath> paths;
+  std::string chain;
+  for (const Atom& atom : molecule.atoms) {
+    if (atom.name != "CA" || atom.hetero) continue;
+    if (paths.empty() || atom.chain != chain) paths.emplace_back(), chain = atom.chain;
+    const std::string insertion = atom.insertion_code == ' ' ? "" : std::string(1, atom.insertion_code);
+    const auto found = residue_value.find({atom.chain, atom.residue_number, insertion});
+    paths.back().points.push_back(atom.position);
+    paths.back().values.push_back(found == residue_value.end() ? std::numeric_limits<double>::quiet_NaN()
+                                                               : found->second);
+  }
+  if (paths.empty())
+    throw InputError(fmt::format("{}: no CA atom, so no backbone to trace; leave out --trace", structure.string()));
+  if (property.info.scale != ScaleKind::categorical)
+    for (TracePath& path : paths) {
+      // Buried residues: linear interpolation between the nearest known neighbours (the end value beyond).
+      const auto n = static_cast<std::ptrdiff_t>(path.values.size());
+      for (std::ptrdiff_t k = 0; k < n; ++k) {
+        if (!std::isnan(path.values[k])) continue;
+        std::ptrdiff_t before = k - 1, after = k + 1;
+        while (before >= 0 && std::isnan(path.values[before])) --before;
+        while (after < n && std::isnan(path.values[after])) ++after;
+        if (before >= 0 && after < n) {
+          const double t = static_cast<double>(k - before) / static_cast<double>(after - before);
+          path.values[k] = (1 - t) * path.values[before] + t * path.values[after];
+        } else if (before >= 0) {
+          path.values[k] = path.values[before];
+        } else if (after < n) {
+          path.values[k] = path.values[after];
+        }
+      }
+    }
+  return paths;
 }
 
 namespace {

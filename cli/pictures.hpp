@@ -4,10 +4,12 @@
 #include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "spheremap/pipeline/map_folder.hpp"
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/render/globe.hpp"
+#include "spheremap/render/hemispheres.hpp"
 
 namespace spheremap::cli {
 
@@ -19,6 +21,13 @@ Globe globe_of(const MapJobResult& result);
 /// The globe of a finished output folder read back (properties as globe_of(MapJobResult) computes them).
 /// Throws InputError if its files do not fit together.
 Globe globe_of(const MapFolder& folder);
+
+/// The backbone of the structure `structure` (its CA atoms, one path per chain, in file order) coloured by
+/// `property`: a CA takes the mean of the property over the globe vertices of its residue; a residue not on
+/// the surface takes the value interpolated along the chain between its nearest neighbours that are (NaN
+/// for categorical properties). Throws InputError if the file cannot be read or has no CA atom.
+std::vector<TracePath> backbone_trace(const Globe& globe, const SurfaceProperty& property,
+                                      const std::filesystem::path& structure);
 
 /// "lo,hi" (--range) with lo < hi, both finite. Throws InputError naming the option otherwise.
 ValueRange parse_range(const std::string& text);

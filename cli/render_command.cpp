@@ -21,7 +21,7 @@ struct RenderCommand {
       "as TSV) or the hemisphere figure";
 
   std::string folder, property = "octant", projection = "mollweide", range, size, format = "png", outline, output;
-  bool hemispheres = false;
+  bool hemispheres = false, trace = false;
   void add(CLI::App* command);
   int run();
 };
@@ -34,6 +34,9 @@ void RenderCommand::add(CLI::App* command) {
                       "mollweide (default, equal-area), equirectangular (plate carrée) or sinusoidal (Flamsteed)");
   command->add_flag("--hemispheres", hemispheres,
                     "Draw the hemisphere figure (surface and globe from two opposite sides) instead of a map");
+  command->add_flag("--trace", trace,
+                    "With --hemispheres: a fifth panel, the backbone (CA trace) coloured alike, from the structure "
+                    "file report.json names");
   command->add_option("--range", range, "Colour range LO,HI (values outside saturate), e.g. --range -5,5");
   command->add_option("--size", size, "Figure size WIDTHxHEIGHT in pixels (default 2048x1024; hemispheres 1600x1600)");
   command->add_option("--format", format, "png (default), svg or pdf");
@@ -55,6 +58,7 @@ int RenderCommand::run() {
   std::optional<std::array<int, 2>> parsed_size;
   if (!size.empty()) parsed_size = parse_size(size);
   if (hemispheres && !outline.empty()) throw InputError("--outline applies to maps, not to --hemispheres");
+  if (trace && !hemispheres) throw InputError("--trace applies to --hemispheres only");
   std::vector<ResidueRange> outline_ranges;
   if (!outline.empty()) outline_ranges = parse_residue_selection(outline);
 
@@ -74,6 +78,13 @@ int RenderCommand::run() {
     options.format = *parsed_format;
     options.range = parsed_range;
     if (parsed_size) options.width = (*parsed_size)[0], options.height = (*parsed_size)[1];
+    if (trace) {
+      const auto input = map.report.find("input");
+      if (input == map.report.end() || !input->is_string())
+        throw InputError(fmt::format("--trace: {}/report.json names no input structure", folder));
+      options.trace = backbone_trace(globe, *chosen, input->get<std::string>());
+      if (!parsed_size) options.width = 2100, options.height = 1500;
+    }
     picture = hemisphere_figure(globe, *chosen, options);
   } else {
     MapFigureOptions options;

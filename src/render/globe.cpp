@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <set>
 #include <tuple>
 
 #include "spheremap/attributes.hpp"
@@ -84,16 +85,31 @@ SurfaceProperty chain_property(const Mesh& surface, const TextAttribute& chain) 
   return p;
 }
 
-// Residues of each chain ranked by (number, insertion code), 0 for the first, 1 for the last.
+// Residues of the polymer: amino acids (with the protonation names of PQR files) and nucleotides. Ligands,
+// ions and waters are not in the sequence.
+bool polymer_residue(const std::string& name) {
+  static const std::set<std::string> names{
+      "ALA", "ARG", "ASN", "ASP", "CYS", "GLN", "GLU", "GLY", "HIS", "ILE", "LEU", "LYS", "MET", "PHE", "PRO",
+      "SER", "THR", "TRP", "TYR", "VAL", "MSE", "SEC", "PYL", "HID", "HIE", "HIP", "HSD", "HSE", "HSP", "CYX",
+      "CYM", "ASH", "GLH", "LYN", "ARN", "TYM", "A",   "C",   "G",   "U",   "I",   "DA",  "DC",  "DG",  "DT",
+      "DI"};
+  return names.count(name) > 0;
+}
+
+// Polymer residues of each chain ranked by (number, insertion code), 0 for the first, 1 for the last; NaN for
+// ligands, ions and waters.
 SurfaceProperty sequence_property(const Globe& globe) {
   SurfaceProperty p{{"sequence_position", "", ScaleKind::spectrum, ValueRange{0, 1}, {}}, "residue order on the surface", {}};
-  std::vector<double> position(globe.residues.size(), 0.0);
+  std::vector<double> position(globe.residues.size(), kNaN);
   // globe.residues is sorted by chain, then number and insertion code: each chain is one run.
   for (std::size_t first = 0; first < globe.residues.size();) {
     std::size_t last = first;
     while (last + 1 < globe.residues.size() && globe.residues[last + 1].chain == globe.residues[first].chain) ++last;
+    std::vector<std::size_t> polymer;
     for (std::size_t r = first; r <= last; ++r)
-      position[r] = last > first ? static_cast<double>(r - first) / static_cast<double>(last - first) : 0.0;
+      if (polymer_residue(globe.residues[r].name)) polymer.push_back(r);
+    for (std::size_t k = 0; k < polymer.size(); ++k)
+      position[polymer[k]] = polymer.size() > 1 ? static_cast<double>(k) / static_cast<double>(polymer.size() - 1) : 0.0;
     first = last + 1;
   }
   p.values.reserve(globe.vertex_residue.size());

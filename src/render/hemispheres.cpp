@@ -138,7 +138,7 @@ void draw_trace(cairo_t* cr, const std::vector<TracePath>& trace, const SurfaceP
                            colour_of(property.info.scale, range, mid)});
     }
   std::stable_sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) { return a.depth < b.depth; });
-  const double width = std::max(2.0, panel.width / 110);
+  const double width = std::max(2.0, panel.width / 75);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   for (const Segment& s : segments) {
     cairo_new_path(cr);
@@ -200,7 +200,7 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
   const double cell_w = (w - 2 * margin) / columns, cell_h = grid_height / 2;
   const double label_space = 1.6 * font_size;
   const int side = std::max(1, static_cast<int>(std::floor(std::min(cell_w, cell_h - label_space) * 0.96)));
-  const auto panel_at = [&](double column, int row, std::string label) {
+  const auto panel_at = [&](double column, double row, std::string label) {
     const double x = margin + column * cell_w + (cell_w - side) / 2;
     const double y = top + row * cell_h + label_space;
     return PanelRect{std::round(x), std::round(y), static_cast<double>(side), static_cast<double>(side), std::move(label)};
@@ -252,7 +252,7 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
                              Align::left, {60, 60, 60});
   }
   if (with_trace) {
-    const PanelRect trace_panel = panel_at(0, 0, "backbone, front");
+    const PanelRect trace_panel = panel_at(0, 0.5, "backbone, front");  // between the two rows
     draw_trace(cr, options.trace, property, range, views.centre, front, surface_scale, trace_panel);
     render_detail::set_font(cr, font_size, true);
     render_detail::draw_text(cr, trace_panel.x, trace_panel.y - 0.45 * font_size, "a", Align::left);

@@ -52,8 +52,8 @@ std::string property_names(const Globe& globe);
 
 /// The properties pictures show until the property registry fills MapJobResult::properties: octant (of
 /// the globe point, categorical), and from the surface's atom attributes chain_index (categorical, chains
-/// in order of first atom), sequence_position (per chain, 0 at its first residue on the surface to 1 at its
-/// last, by residue number and insertion code), residue_number, b_factor (Å²) and charge (e), each when the
+/// in order of first atom), sequence_position (per chain, 0 at its first polymer residue on the surface to 1
+/// at its last, by residue number and insertion code; no value on ligands, ions and waters), residue_number, b_factor (Å²) and charge (e), each when the
 /// surface carries what it needs. Precondition: sphere.size() == surface.vertex_count(). Never throws (but
 /// std::bad_alloc).
 std::vector<SurfaceProperty> properties_from_attributes(const Mesh& surface, const std::vector<Vec3>& sphere);
