@@ -320,6 +320,40 @@ TEST(HemisphereFigure, HasTheSizeIsNotBlankAndIsDeterministic) {
   EXPECT_THROW(hemisphere_figure(globe, *find_globe_property(globe, "octant"), options), InputError);
 }
 
+TEST(GlobeProperties, SequencePositionRanksPolymerResiduesOfEachChainAndLeavesLigandsOut) {
+  const Mesh sphere = make_icosphere(1);  // 42 vertices
+  Mesh surface = sphere;
+  TextAttribute chain{{"A", "B"}, {}}, name{{"ALA", "HOH"}, {}};
+  std::vector<std::int32_t> number;
+  for (std::size_t v = 0; v < sphere.vertex_count(); ++v) {
+    // Chain A: residues 10, 11, 12 and a water 500; chain B: residue 7 only.
+    const int k = static_cast<int>(v % 5);
+    chain.codes.push_back(k == 4 ? 1 : 0);
+    name.codes.push_back(k == 3 ? 1 : 0);
+    number.push_back(k == 4 ? 7 : k == 3 ? 500 : 10 + k);
+  }
+  surface.text_attributes["vertex_chain"] = chain;
+  surface.text_attributes["vertex_residue_name"] = name;
+  surface.integer_attributes["vertex_residue_number"] = number;
+  const auto properties = properties_from_attributes(surface, sphere.positions);
+  const Globe globe = make_globe(surface, sphere.positions, properties, "test");
+  const SurfaceProperty* position = find_globe_property(globe, "sequence_position");
+  ASSERT_NE(position, nullptr);
+  EXPECT_EQ(position->info.scale, ScaleKind::spectrum);
+  for (std::size_t v = 0; v < sphere.vertex_count(); ++v) {
+    const int k = static_cast<int>(v % 5);
+    if (k == 3) {
+      EXPECT_TRUE(std::isnan(position->values[v])) << v;
+    } else {
+      EXPECT_DOUBLE_EQ(position->values[v], k == 4 ? 0.0 : k / 2.0) << v;
+    }
+  }
+  const SurfaceProperty* chains = find_globe_property(globe, "chain_index");
+  ASSERT_NE(chains, nullptr);
+  EXPECT_EQ(chains->info.categories, (std::vector<std::string>{"A", "B"}));
+  EXPECT_EQ(globe.residues.size(), 5u);
+}
+
 TEST(HemisphereViews, LookAlongTheAxisOfLeastSpread) {
   const Mesh ellipsoid = make_ellipsoid(3, 1, 3, 2);  // most spread along y, least along x
   const HemisphereViews views = hemisphere_views(ellipsoid.positions);
