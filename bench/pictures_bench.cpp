@@ -33,7 +33,7 @@ void BM_AllPictures5hr7(benchmark::State& state) {
     const spheremap::Globe globe = spheremap::make_globe(
         surface, result.map.sphere, spheremap::properties_from_attributes(surface, result.map.sphere), "5hr7");
     const auto written = spheremap::write_map_pictures(
-        folder, globe, spheremap::viewer_data_for_map(surface, result.map.sphere, "5hr7"), 2);
+        folder, globe, spheremap::viewer_data_for_map(surface, result.map.sphere, "5hr7", globe.properties), 2);
     benchmark::DoNotOptimize(written.size());
   }
   std::filesystem::remove_all(folder);

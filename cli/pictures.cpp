@@ -129,7 +129,8 @@ std::array<int, 2> parse_size(const std::string& text) {
 
 void write_pictures(const std::filesystem::path& folder, const MapJobResult& result) {
   const Globe globe = globe_of(result);
-  write_map_pictures(folder, globe, viewer_data_for_map(result.prepared.mesh, result.map.sphere, globe.name));
+  write_map_pictures(folder, globe,
+                     viewer_data_for_map(result.prepared.mesh, result.map.sphere, globe.name, globe.properties));
 }
 
 }  // namespace spheremap::cli

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "pictures.hpp"
 #include "spheremap/pipeline/map_folder.hpp"
 #include "spheremap/render/viewer_data.hpp"
 
@@ -22,7 +23,8 @@ struct ViewCommand {
   int run() {
     const MapFolder map = read_map_folder(folder);
     const std::filesystem::path path = std::filesystem::path(folder) / "index.html";
-    write_viewer_html(path, viewer_data_for_map(map.surface, map.sphere, map.name));
+    const Globe globe = globe_of(map);  // the properties the pictures show
+    write_viewer_html(path, viewer_data_for_map(map.surface, map.sphere, map.name, globe.properties));
     std::cout << path.string() << "\n";
     return 0;
   }

@@ -89,4 +89,29 @@ ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sph
   return data;
 }
 
+ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title,
+                               const std::vector<SurfaceProperty>& properties) {
+  if (sphere.size() != surface.vertex_count())
+    throw std::invalid_argument("viewer_data_for_map: " + std::to_string(sphere.size()) + " sphere points for " +
+                                std::to_string(surface.vertex_count()) + " surface vertices");
+  ViewerData data;
+  data.title = std::move(title);
+  data.surface_positions = surface.positions;
+  data.sphere_positions = sphere;
+  data.triangles = surface.triangles;
+  add_atoms(surface, data);
+  for (const SurfaceProperty& property : properties) {
+    if (property.values.size() != surface.vertex_count())
+      throw std::invalid_argument("viewer_data_for_map: property " + property.info.name + " has " +
+                                  std::to_string(property.values.size()) + " values");
+    ViewerProperty p{property.info.name, property.info.unit, property.info.scale, {}, {}, property.info.categories};
+    p.values.assign(property.values.begin(), property.values.end());
+    p.range = property.info.scale == ScaleKind::categorical ? ValueRange{0, 255}
+              : property.info.default_range                 ? *property.info.default_range
+                                                             : data_range(property.info.scale, p.values);
+    data.properties.push_back(std::move(p));
+  }
+  return data;
+}
+
 }  // namespace spheremap

@@ -18,6 +18,7 @@
 #include "spheremap/render/hemispheres.hpp"
 #include "spheremap/render/map_picture.hpp"
 #include "spheremap/render/plot.hpp"
+#include "spheremap/render/viewer_data.hpp"
 #include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
@@ -352,6 +353,22 @@ TEST(GlobeProperties, SequencePositionRanksPolymerResiduesOfEachChainAndLeavesLi
   ASSERT_NE(chains, nullptr);
   EXPECT_EQ(chains->info.categories, (std::vector<std::string>{"A", "B"}));
   EXPECT_EQ(globe.residues.size(), 5u);
+}
+
+TEST(ViewerData, ShowsThePicturesProperties) {
+  const Mesh sphere = make_icosphere(2);
+  const Globe globe = test_globe(2);
+  const ViewerData data = viewer_data_for_map(sphere, globe.sphere, "t", globe.properties);
+  ASSERT_EQ(data.properties.size(), globe.properties.size());
+  for (std::size_t k = 0; k < globe.properties.size(); ++k) {
+    EXPECT_EQ(data.properties[k].name, globe.properties[k].info.name);
+    EXPECT_EQ(data.properties[k].scale, globe.properties[k].info.scale);
+  }
+  const auto& z = data.properties.back();
+  EXPECT_EQ(z.name, "z");
+  EXPECT_EQ(z.range.lo, -1);  // its default range
+  EXPECT_EQ(z.range.hi, 1);
+  EXPECT_GT(viewer_html(data).size(), 1000u);
 }
 
 TEST(HemisphereViews, LookAlongTheAxisOfLeastSpread) {

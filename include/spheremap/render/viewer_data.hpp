@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "spheremap/mesh.hpp"
+#include "spheremap/properties/property.hpp"
 #include "spheremap/render/viewer.hpp"
 
 namespace spheremap {
@@ -20,5 +21,12 @@ namespace spheremap {
 /// Preconditions: sphere.size() == surface.vertex_count(); the mesh's invariants (mesh.hpp).
 /// Throws std::invalid_argument if the sizes differ.
 ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title);
+
+/// The same with `properties` (e.g. MapJobResult::properties, or the pictures' properties) instead of those
+/// read from the surface's attributes, in their order: each with its default range, else its data's range
+/// (data_range). Preconditions as above; every property has one value per vertex.
+/// Throws std::invalid_argument if the sizes differ.
+ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title,
+                               const std::vector<SurfaceProperty>& properties);
 
 }  // namespace spheremap
