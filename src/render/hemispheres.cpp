@@ -83,8 +83,12 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
   }
   render_detail::IdBuffer buffer = render_detail::make_id_buffer(sw, sh);
   render_detail::rasterize(screen, globe.triangles, buffer);
-  // The light comes from the viewer's upper left.
-  const Vec3 light = unit({-0.45, 0.55, 1.0});
+  // The light comes from the viewer's upper left; Lambert's law at each vertex, interpolated over the
+  // triangles (Gouraud): the vertex normals of a smooth surface vary little across a triangle.
+  const Vec3 light_direction = unit({-0.45, 0.55, 1.0});
+  std::vector<double> light(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    light[v] = kAmbient + kDiffuse * std::max(0.0, dot(view(normals[v]), light_direction));
   std::vector<std::uint32_t> pixels(static_cast<std::size_t>(width) * height, 0);
   detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
     for (auto y = static_cast<int>(first); y < last; ++y)
@@ -102,10 +106,7 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
             const double value = value_at(globe, property, t,
                                           {static_cast<float>(w[0]), static_cast<float>(w[1]), static_cast<float>(w[2])});
             const Rgb8 colour = colour_of(property.info.scale, range, value);
-            Vec3 n{0, 0, 0};
-            for (int k = 0; k < 3; ++k)
-              for (int i = 0; i < 3; ++i) n[i] += w[k] * normals[tri[k]][i];
-            const double shade = kAmbient + kDiffuse * std::max(0.0, dot(unit(view(n)), light));
+            const double shade = w[0] * light[tri[0]] + w[1] * light[tri[1]] + w[2] * light[tri[2]];
             r += colour.r * shade, g += colour.g * shade, b += colour.b * shade, covered += 1;
           }
         if (covered == 0) continue;
