@@ -67,7 +67,7 @@ int RenderCommand::run() {
   const SurfaceProperty* chosen = find_globe_property(globe, property);
   if (chosen == nullptr)
     throw InputError(fmt::format("--property '{}': {} has no such property; it has {}", property, folder,
-                                 property_names(globe)));
+                                 globe_property_names(globe)));
   const std::string stem = property + "-" + (hemispheres ? "hemispheres" : std::string(to_string(*parsed_projection)));
   const std::filesystem::path path =
       output.empty() ? std::filesystem::path(folder) / "pictures" / (stem + "." + std::string(to_string(*parsed_format)))

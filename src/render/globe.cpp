@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "spheremap/attributes.hpp"
+#include "spheremap/properties/shape.hpp"
 
 namespace spheremap {
 namespace {
@@ -53,7 +54,8 @@ void add_residues(const Mesh& surface, Globe& globe) {
 }
 
 SurfaceProperty octant_property(const std::vector<Vec3>& sphere) {
-  SurfaceProperty p{{"octant", "", ScaleKind::categorical, std::nullopt, octant_names()}, "globe position", {}};
+  SurfaceProperty p{{"octant", "", ScaleKind::categorical, std::nullopt, {octant_names().begin(), octant_names().end()}},
+                    "globe position", {}};
   p.values.reserve(sphere.size());
   // A zero coordinate counts as +, as in the octant metrics.
   for (const Vec3& s : sphere) p.values.push_back((s[0] < 0) + 2 * (s[1] < 0) + 4 * (s[2] < 0));
@@ -131,12 +133,6 @@ std::string residue_id(const ResidueLabel& residue) {
   return residue.chain + ":" + std::to_string(residue.number) + residue.insertion_code;
 }
 
-const std::vector<std::string>& octant_names() {
-  static const std::vector<std::string> names{"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z",
-                                              "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"};
-  return names;
-}
-
 Globe make_globe(const Mesh& surface, const std::vector<Vec3>& sphere, std::vector<SurfaceProperty> properties,
                  std::string name) {
   if (sphere.size() != surface.vertex_count())
@@ -162,7 +158,7 @@ const SurfaceProperty* find_globe_property(const Globe& globe, std::string_view 
   return nullptr;
 }
 
-std::string property_names(const Globe& globe) {
+std::string globe_property_names(const Globe& globe) {
   std::string names;
   for (const auto& p : globe.properties) names += (names.empty() ? "" : ", ") + p.info.name;
   return names.empty() ? "(none)" : names;

@@ -48,7 +48,7 @@ Globe make_globe(const Mesh& surface, const std::vector<Vec3>& sphere, std::vect
 const SurfaceProperty* find_globe_property(const Globe& globe, std::string_view name);
 
 /// The names of globe's properties, comma-separated (for messages). Never throws (but std::bad_alloc).
-std::string property_names(const Globe& globe);
+std::string globe_property_names(const Globe& globe);
 
 /// The properties pictures show until the property registry fills MapJobResult::properties: octant (of
 /// the globe point, categorical), and from the surface's atom attributes chain_index (categorical, chains
@@ -58,7 +58,5 @@ std::string property_names(const Globe& globe);
 /// std::bad_alloc).
 std::vector<SurfaceProperty> properties_from_attributes(const Mesh& surface, const std::vector<Vec3>& sphere);
 
-/// The names of the octants, class k = (x < 0) + 2 (y < 0) + 4 (z < 0) of the globe point: "+x+y+z", ...
-const std::vector<std::string>& octant_names();
 
 }  // namespace spheremap
