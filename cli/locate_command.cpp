@@ -51,7 +51,7 @@ int locate_point_command(const Globe& globe, double lat, double lon) {
     for (const std::int32_t c : at.corner_residues) corners += (corners.empty() ? "" : ", ") + residue_id(globe.residues[c]);
     std::cout << "residues of the triangle's corners: " << corners << "\n";
   } else {
-    std::cout << "residue: none (the surface carries no atoms)\n";
+    std::cout << "residue: none (" << (globe.residues.empty() ? no_residues_text(globe) : "no atom there") << ")\n";
   }
   for (std::size_t k = 0; k < globe.properties.size(); ++k) {
     const auto& info = globe.properties[k].info;

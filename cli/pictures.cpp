@@ -37,8 +37,13 @@ Globe globe_of(const MapJobResult& result) {
 
 Globe globe_of(const MapFolder& folder) {
   try {
-    return make_globe(folder.surface, folder.sphere, properties_from_attributes(folder.surface, folder.sphere),
-                      folder.name);
+    // Folders before 0.2 list no properties: compute those the pictures showed then.
+    Globe globe = make_globe(folder.surface, folder.sphere,
+                             folder.properties.empty() ? properties_from_attributes(folder.surface, folder.sphere)
+                                                       : folder.properties,
+                             folder.name);
+    globe.no_residues_reason = folder.no_residues_reason;
+    return globe;
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("{}: the map's files do not fit together ({}); map again", folder.folder.string(),
                                  e.what()));
@@ -47,6 +52,8 @@ Globe globe_of(const MapFolder& folder) {
 
 std::vector<TracePath> backbone_trace(const Globe& globe, const SurfaceProperty& property,
                                       const std::filesystem::path& structure) {
+  if (globe.residues.empty())
+    throw InputError(fmt::format("--trace: this map has no residues ({})", no_residues_text(globe)));
   const Molecule molecule = read_structure(structure);
   // Mean value of each residue over its vertices.
   std::vector<double> sum(globe.residues.size(), 0.0);

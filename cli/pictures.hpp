@@ -18,14 +18,15 @@ namespace spheremap::cli {
 /// attributes), named after the input file. Throws as make_globe.
 Globe globe_of(const MapJobResult& result);
 
-/// The globe of a finished output folder read back (properties as globe_of(MapJobResult) computes them).
-/// Throws InputError if its files do not fit together.
+/// The globe of a finished output folder read back: the folder's properties (for folders before 0.2, those
+/// properties_from_attributes computes). Throws InputError if its files do not fit together.
 Globe globe_of(const MapFolder& folder);
 
 /// The backbone of the structure `structure` (its CA atoms, one path per chain, in file order) coloured by
 /// `property`: a CA takes the mean of the property over the globe vertices of its residue; a residue not on
 /// the surface takes the value interpolated along the chain between its nearest neighbours that are (NaN
-/// for categorical properties). Throws InputError if the file cannot be read or has no CA atom.
+/// for categorical properties). Throws InputError if the globe has no residues, or the file cannot be read or
+/// has no CA atom.
 std::vector<TracePath> backbone_trace(const Globe& globe, const SurfaceProperty& property,
                                       const std::filesystem::path& structure);
 

@@ -539,6 +539,38 @@ ReportSummary read_report(const nlohmann::json& report, const std::filesystem::p
   return r;
 }
 
+std::vector<ReportProperty> read_report_properties(const nlohmann::json& report, const std::filesystem::path& source) {
+  std::vector<ReportProperty> properties;
+  if (!report.is_object() || !report.contains("properties") || !report["properties"].is_object()) return properties;
+  const ReportFields f(report, source);
+  for (const auto& [name, entry] : report["properties"].items()) {
+    ReportProperty p;
+    p.info.name = name;
+    p.info.unit = f.text({"properties", name.c_str(), "unit"});
+    p.source = f.text({"properties", name.c_str(), "source"});
+    const std::string scale = f.text({"properties", name.c_str(), "scale"});
+    bool known = false;
+    for (const ScaleKind kind : {ScaleKind::sequential, ScaleKind::diverging, ScaleKind::categorical, ScaleKind::spectrum})
+      if (to_string(kind) == scale) p.info.scale = kind, known = true;
+    if (!known)
+      throw InputError(fmt::format("{}: field 'properties.{}.scale' is '{}', not a colour scale of spheremap; map the "
+                                   "input again",
+                                   source.string(), name, scale));
+    const auto range = entry.find("default_range");
+    if (range != entry.end() && !range->is_null()) {
+      if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() || !(*range)[1].is_number())
+        f.wrong_type({"properties", name.c_str(), "default_range"}, *range);
+      p.info.default_range = ValueRange{(*range)[0].get<double>(), (*range)[1].get<double>()};
+    }
+    const auto categories = entry.find("categories");
+    if (categories != entry.end() && categories->is_array())
+      for (const auto& c : *categories)
+        if (c.is_string()) p.info.categories.push_back(c.get<std::string>());
+    properties.push_back(std::move(p));
+  }
+  return properties;
+}
+
 ReportSummary read_report_file(const std::filesystem::path& report_json) {
   std::ifstream in(report_json, std::ios::binary);
   if (!in)

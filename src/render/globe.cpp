@@ -152,6 +152,10 @@ Globe make_globe(const Mesh& surface, const std::vector<Vec3>& sphere, std::vect
   return globe;
 }
 
+std::string no_residues_text(const Globe& globe) {
+  return globe.no_residues_reason.empty() ? "it was made from a mesh file, not a structure" : globe.no_residues_reason;
+}
+
 const SurfaceProperty* find_globe_property(const Globe& globe, std::string_view name) {
   for (const auto& p : globe.properties)
     if (p.info.name == name) return &p;

@@ -78,8 +78,7 @@ bool in_range(const ResidueLabel& r, const ResidueRange& range) {
 std::vector<std::int32_t> select_residues(const Globe& globe, const std::vector<ResidueRange>& ranges,
                                           std::string_view option) {
   if (globe.residues.empty())
-    throw InputError(fmt::format("{}: this map has no residues (it was made from a mesh file, not a structure)",
-                                 option));
+    throw InputError(fmt::format("{}: this map has no residues ({})", option, no_residues_text(globe)));
   std::set<std::string> chains;
   for (const auto& r : globe.residues) chains.insert(r.chain);
   std::vector<std::int32_t> selected;

@@ -14,6 +14,7 @@
 
 #include "spheremap/metrics/distortion.hpp"
 #include "spheremap/pipeline/map_job.hpp"
+#include "spheremap/properties/property.hpp"
 #include "spheremap/sphere/map.hpp"
 
 namespace spheremap {
@@ -83,6 +84,19 @@ struct ReportSummary {
 /// Throws InputError naming `source` and the first field that is missing or of the wrong type (the file
 /// is not a report of this version of spheremap map).
 ReportSummary read_report(const nlohmann::json& report, const std::filesystem::path& source);
+
+/// A property as report.json's `properties` block describes it: what a reader needs to show the PLY's
+/// `vertex_<name>` values (the --values columns are in no registry, and categories such as the chain names
+/// belong to one surface).
+struct ReportProperty {
+  PropertyInfo info;   // name (the key), unit, scale, default_range, categories
+  std::string source;  // `source`
+};
+
+/// The `properties` block of a parsed report.json, in key order; empty when the report has none (spheremap
+/// before 0.2). Throws InputError naming `source` and the field if an entry lacks `unit`, `scale` or `source`,
+/// names an unknown scale, or has a `default_range` that is not null or two numbers.
+std::vector<ReportProperty> read_report_properties(const nlohmann::json& report, const std::filesystem::path& source);
 
 /// Reads, parses and summarizes one report.json.
 /// Throws InputError if the file cannot be read, is not JSON, or lacks a field (as read_report).

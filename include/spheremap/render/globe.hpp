@@ -35,7 +35,13 @@ struct Globe {
   std::vector<std::int32_t> vertex_residue;
   std::vector<ResidueLabel> residues;  // sorted by chain, number, insertion code
   std::vector<SurfaceProperty> properties;
+  /// Why a structure's globe has no residues (e.g. its folder lost atoms.csv); empty: none are expected (a mesh).
+  std::string no_residues_reason;
 };
+
+/// Why `globe` has no residues, for messages: its no_residues_reason, or that it was made from a mesh file.
+/// Never throws (but std::bad_alloc).
+std::string no_residues_text(const Globe& globe);
 
 /// The globe of a mapped `surface` (positions, triangles, and its atom attributes vertex_chain,
 /// vertex_residue_number, vertex_insertion_code, vertex_residue_name when present) and its `sphere`.
