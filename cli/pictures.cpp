@@ -38,10 +38,10 @@ Globe globe_of(const MapJobResult& result) {
 Globe globe_of(const MapFolder& folder) {
   try {
     // Folders before 0.2 list no properties: compute those the pictures showed then.
-    Globe globe = make_globe(folder.surface, folder.sphere,
-                             folder.properties.empty() ? properties_from_attributes(folder.surface, folder.sphere)
-                                                       : folder.properties,
-                             folder.name);
+    Globe globe = make_globe(
+        folder.surface, folder.sphere,
+        folder.properties.empty() ? properties_from_attributes(folder.surface, folder.sphere) : folder.properties,
+        folder.name);
     globe.no_residues_reason = folder.no_residues_reason;
     return globe;
   } catch (const std::invalid_argument& e) {

@@ -61,8 +61,8 @@ std::vector<std::int32_t> integer_column(const std::vector<DelimitedRecord>& row
     std::int32_t value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error != std::errc() || end != text.data() + text.size())
-      throw InputError(fmt::format("{}:{}: {} '{}' is not a whole number; {}", path.string(), row.line, name, text,
-                                   kFix));
+      throw InputError(
+          fmt::format("{}:{}: {} '{}' is not a whole number; {}", path.string(), row.line, name, text, kFix));
     values.push_back(value);
   }
   return values;

@@ -550,12 +550,14 @@ std::vector<ReportProperty> read_report_properties(const nlohmann::json& report,
     p.source = f.text({"properties", name.c_str(), "source"});
     const std::string scale = f.text({"properties", name.c_str(), "scale"});
     bool known = false;
-    for (const ScaleKind kind : {ScaleKind::sequential, ScaleKind::diverging, ScaleKind::categorical, ScaleKind::spectrum})
+    for (const ScaleKind kind :
+         {ScaleKind::sequential, ScaleKind::diverging, ScaleKind::categorical, ScaleKind::spectrum})
       if (to_string(kind) == scale) p.info.scale = kind, known = true;
     if (!known)
-      throw InputError(fmt::format("{}: field 'properties.{}.scale' is '{}', not a colour scale of spheremap; map the "
-                                   "input again",
-                                   source.string(), name, scale));
+      throw InputError(
+          fmt::format("{}: field 'properties.{}.scale' is '{}', not a colour scale of spheremap; map the "
+                      "input again",
+                      source.string(), name, scale));
     const auto range = entry.find("default_range");
     if (range != entry.end() && !range->is_null()) {
       if (!range->is_array() || range->size() != 2 || !(*range)[0].is_number() || !(*range)[1].is_number())

@@ -173,9 +173,9 @@ TEST_F(PictureCommands, AStructureFolderWithoutAtomsCsvSaysSo) {
   EXPECT_NE(run.output.find("has no atoms.csv"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("mesh file"), std::string::npos) << run.output;
   // What needs no residue still works.
-  EXPECT_EQ(run_cli("render " + map_.string() + " --property hydrophobicity -o " + (folder_ / "h.png").string())
-                .exit_code,
-            0);
+  EXPECT_EQ(
+      run_cli("render " + map_.string() + " --property hydrophobicity -o " + (folder_ / "h.png").string()).exit_code,
+      0);
 }
 
 TEST_F(PictureCommands, LocateGivesTheResidueOfAVertexAtItsLatitudeAndLongitude) {
