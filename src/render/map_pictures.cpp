@@ -1,6 +1,7 @@
 // The default pictures of a map job (see map_pictures.hpp).
 #include "spheremap/render/map_pictures.hpp"
 
+#include <algorithm>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -16,6 +17,11 @@ std::string featured_property(const Globe& globe) {
   for (const char* name : {"electrostatics", "sequence_position", "hydrophobicity", "b_factor"})
     if (find_globe_property(globe, name) != nullptr) return name;
   return "";
+}
+
+const std::vector<std::string>& default_map_properties() {
+  static const std::vector<std::string> names{"electrostatics", "hydrophobicity", "sequence_position", "octant"};
+  return names;
 }
 
 std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::path& folder, const Globe& globe,
@@ -37,7 +43,9 @@ std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::pat
   // One sampling serves every property's map.
   const MapSamples samples = sample_map(locator, Projection::mollweide, size[0], size[1], threads);
   const MapSamples grid = sample_grid(locator, Projection::mollweide, 360, 180, threads);
+  const auto& drawn = default_map_properties();
   for (const SurfaceProperty& property : globe.properties) {
+    if (std::find(drawn.begin(), drawn.end(), property.info.name) == drawn.end()) continue;
     const std::string stem = property.info.name + "-mollweide";
     write(pictures / (stem + ".png"), map_figure(globe, property, samples, options));
     write(pictures / (stem + ".tsv"), map_grid_tsv(globe, property, grid));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -250,6 +251,17 @@ TEST_F(PictureCommands, ViewWritesTheViewerAndMapWritesPicturesUnlessTold) {
   EXPECT_TRUE(fs::exists(folder_ / "without" / "sphere.ply"));
   EXPECT_FALSE(fs::exists(folder_ / "without" / "pictures"));
   EXPECT_FALSE(fs::exists(folder_ / "without" / "index.html"));
+  // A structure: maps of the default properties only (render draws the others), two hemisphere figures.
+  const auto peptide =
+      run_cli("map " + (folder_ / "peptide.pdb").string() + " -q -o " + (folder_ / "peptide").string());
+  ASSERT_EQ(peptide.exit_code, 0) << peptide.output;
+  std::set<std::string> pictures;
+  for (const auto& entry : fs::directory_iterator(folder_ / "peptide" / "pictures"))
+    pictures.insert(entry.path().filename().string());
+  std::set<std::string> expected{"electrostatics-hemispheres.png", "octant-hemispheres.png"};
+  for (const char* name : {"electrostatics", "hydrophobicity", "sequence_position", "octant"})
+    for (const char* ext : {".png", ".tsv"}) expected.insert(std::string(name) + "-mollweide" + ext);
+  EXPECT_EQ(pictures, expected);
   // The same input gives the same pictures.
   ASSERT_EQ(run_cli("map " + (folder_ / "ball.ply").string() + " -q -o " + (folder_ / "again").string()).exit_code, 0);
   EXPECT_EQ(testing_support::slurp(folder_ / "with" / "pictures" / "octant-mollweide.png"),
