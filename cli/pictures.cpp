@@ -14,6 +14,7 @@
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/render/map_pictures.hpp"
 #include "spheremap/render/viewer_data.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap::cli {
 namespace {
@@ -22,7 +23,7 @@ namespace {
 std::string structure_name(const std::filesystem::path& input) {
   std::filesystem::path name = input.filename();
   if (name.extension() == ".gz") name = name.stem();
-  return name.stem().string();
+  return valid_utf8(name.stem().string());  // titles go through cairo, which takes UTF-8 only
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/properties/registry.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap {
 namespace {
@@ -25,7 +26,7 @@ const char* const kFix = "give the folder that `spheremap map INPUT -o FOLDER` w
 std::string input_name(const std::string& input) {
   std::filesystem::path name = std::filesystem::path(input).filename();
   if (name.extension() == ".gz") name = name.stem();
-  return name.stem().string();
+  return valid_utf8(name.stem().string());  // titles go through cairo, which takes UTF-8 only
 }
 
 std::string read_text(const std::filesystem::path& path) {
