@@ -123,9 +123,9 @@ void MapCommand::add(CLI::App* command) {
       ->check(CLI::IsMember({"outer", "all"}));
   add_quiet_flag(command, quiet);
   command->add_flag("--force", force,
-                    "Replace the outputs of an earlier run in the output folder (surface.ply, sphere.ply, "
-                    "report.json, component-K/), removed once the new map is made; without it such a folder is "
-                    "refused. Other files are kept");
+                    "Replace the outputs of an earlier run in the output folder (surface/sphere .ply and .glb, "
+                    "atoms.csv, residues.csv, report.json, index.html, pictures/, component-K/), removed once the "
+                    "new map is made; without it such a folder is refused. Other files are kept");
   map.add(command, WeightingCount::kOne);
 }
 

@@ -433,7 +433,7 @@ GlbMesh glb_mesh(const Mesh& ply, const std::vector<Vec3>& normals, const MapJob
 
 const std::vector<std::string>& map_output_names() {
   static const std::vector<std::string> names = {kSurfaceFile, kSphereFile, kSurfaceGlbFile, kSphereGlbFile,
-                                                 kAtomsFile, kResiduesFile, kReportFile};
+                                                 kAtomsFile,   kResiduesFile, kReportFile,    kViewerFile};
   return names;
 }
 

@@ -55,7 +55,8 @@ std::vector<std::string> earlier_map_outputs(const fs::path& folder) {
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     std::error_code type_error;
-    if (it->is_directory(type_error) && is_component_folder(name)) found.push_back(name + "/");
+    if (it->is_directory(type_error) && (is_component_folder(name) || name == kPicturesFolder))
+      found.push_back(name + "/");
     else if (is_output_file(name)) found.push_back(name);
   }
   std::sort(found.begin(), found.end());

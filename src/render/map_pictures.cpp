@@ -8,6 +8,7 @@
 
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
+#include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/render/hemispheres.hpp"
 #include "spheremap/render/map_picture.hpp"
 
@@ -26,7 +27,7 @@ const std::vector<std::string>& default_map_properties() {
 
 std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::path& folder, const Globe& globe,
                                                       const ViewerData& viewer, int threads) {
-  const std::filesystem::path pictures = folder / "pictures";
+  const std::filesystem::path pictures = folder / kPicturesFolder;
   std::error_code error;
   std::filesystem::create_directories(pictures, error);
   if (error)
@@ -58,8 +59,8 @@ std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::pat
   for (const std::string& name : hemisphere_properties)
     if (const SurfaceProperty* property = find_globe_property(globe, name))
       write(pictures / (name + "-hemispheres.png"), hemisphere_figure(globe, *property, hemispheres));
-  write_viewer_html(folder / "index.html", viewer);
-  written.push_back(folder / "index.html");
+  write_viewer_html(folder / kViewerFile, viewer);
+  written.push_back(folder / kViewerFile);
   return written;
 }
 

@@ -458,9 +458,12 @@ TEST_F(Cli, AnEarlierRunsFolderIsRefusedOrReplacedWithForce) {
   EXPECT_NE(refused.output.find("--force"), std::string::npos) << refused.output;
   EXPECT_TRUE(fs::exists(out / "component-3" / "report.json"));
   EXPECT_EQ(slurp(out / "report.json"), report);  // untouched
-  const auto forced = run_cli("map " + input + " -o " + out.string() + " -q --force");
+  ASSERT_TRUE(fs::exists(out / "pictures") && fs::exists(out / "index.html"));  // the first run's
+  const auto forced = run_cli("map " + input + " -o " + out.string() + " -q --force --no-pictures");
   EXPECT_EQ(forced.exit_code, 0) << forced.output;
   EXPECT_FALSE(fs::exists(out / "component-3"));
+  EXPECT_FALSE(fs::exists(out / "pictures"));  // no stale pictures beside a run that drew none
+  EXPECT_FALSE(fs::exists(out / "index.html"));
   EXPECT_EQ(slurp(out / "notes.txt"), "mine");
   for (const char* name : {"surface.ply", "sphere.ply"}) EXPECT_TRUE(fs::exists(out / name)) << name;
 }

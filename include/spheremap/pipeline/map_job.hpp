@@ -107,6 +107,9 @@ inline constexpr const char* kSurfaceGlbFile = "surface.glb";  // glTF 2.0 twins
 inline constexpr const char* kSphereGlbFile = "sphere.glb";
 inline constexpr const char* kAtomsFile = "atoms.csv";        // structures: one row per atom, by `atomid`
 inline constexpr const char* kResiduesFile = "residues.csv";  // structures: one row per residue
+/// What the command's `map` adds beside them (render/map_pictures.hpp): the viewer and the pictures folder.
+inline constexpr const char* kViewerFile = "index.html";
+inline constexpr const char* kPicturesFolder = "pictures";
 
 /// Every file name a map run may write into its folder (write_map_outputs and the outputs added to it):
 /// what a new run replaces (pipeline/output_folder.hpp) and a batch clears. A new output file of the map
