@@ -109,8 +109,8 @@ void BM_Factorize(benchmark::State& state) {
   }
   const auto start = std::chrono::steady_clock::now();
   const auto order = state.range(2) == 1   ? detail::metis_elimination_order(rings, mesh->positions, fixed)
-                    : state.range(2) == 2 ? detail::amd_elimination_order(rings, mesh->positions, fixed)
-                                          : detail::geometric_elimination_order(rings, mesh->positions, fixed);
+                     : state.range(2) == 2 ? detail::amd_elimination_order(rings, mesh->positions, fixed)
+                                           : detail::geometric_elimination_order(rings, mesh->positions, fixed);
   const double order_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   detail::ReusableCholesky factor(rings, order);
   const detail::EdgeWeights weights{std::vector<double>(rings.neighbors.size(), 1.0), true, 0};
@@ -122,10 +122,38 @@ void BM_Factorize(benchmark::State& state) {
   state.SetLabel(std::string(kStructures[state.range(0)]) + " " + spheremap::to_string(order.method));
 }
 
-BENCHMARK(BM_MapMolecular)->Args({0, 50})->Args({1, 50})->Args({2, 100})->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
-BENCHMARK(BM_Factorize)->ArgsProduct({{0, 1}, {50}, {0, 1, 2}})->Args({2, 100, 0})->Args({2, 100, 1})->Args({2, 100, 2})->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
-BENCHMARK(BM_MapDirect)->Arg(41)->Arg(129)->Arg(337)->Arg(408)->Arg(500)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
-BENCHMARK(BM_MapGaussSeidel)->Arg(41)->Arg(129)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_MapMolecular)
+    ->Args({0, 50})
+    ->Args({1, 50})
+    ->Args({2, 100})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_Factorize)
+    ->ArgsProduct({{0, 1}, {50}, {0, 1, 2}})
+    ->Args({2, 100, 0})
+    ->Args({2, 100, 1})
+    ->Args({2, 100, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_MapDirect)
+    ->Arg(41)
+    ->Arg(129)
+    ->Arg(337)
+    ->Arg(408)
+    ->Arg(500)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_MapGaussSeidel)
+    ->Arg(41)
+    ->Arg(129)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 }  // namespace
 

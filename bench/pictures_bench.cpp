@@ -5,9 +5,9 @@
 // 1M-vertex sphere in <= 1 s (BM_RenderMollweide1M: the locator, the sampling and the figure, as `render`).
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
-#include <unistd.h>
 
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/render/map_picture.hpp"

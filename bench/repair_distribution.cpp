@@ -42,15 +42,17 @@ int main(int argc, char** argv) {
   for (const char* set : {"paper77", "misc"})
     for (const auto& entry : fs::directory_iterator(data / set)) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
-  std::printf("| structure | atoms | genus before | method | cuts | fills | samples | volume (Å³) | outer area before (Å²) | "
-              "area change (Å²) | change %% | Å² per handle | genus after | seconds | repair s | CPU s |\n");
+  std::printf(
+      "| structure | atoms | genus before | method | cuts | fills | samples | volume (Å³) | outer area before (Å²) | "
+      "area change (Å²) | change %% | Å² per handle | genus after | seconds | repair s | CPU s |\n");
   std::printf("|---|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   std::vector<double> changes;
   int repaired = 0, failed = 0, skipped = 0, per_handle = 0, measured = 0;
   for (const auto& file : files) {
     const std::string name = file.parent_path().filename().string() + "/" + file.filename().string();
     const std::string stem = "," + file.stem().string() + ",";
-    if ((!skip.empty() && skip.find(stem) != std::string::npos) || (!only.empty() && only.find(stem) == std::string::npos)) {
+    if ((!skip.empty() && skip.find(stem) != std::string::npos) ||
+        (!only.empty() && only.find(stem) == std::string::npos)) {
       if (only.empty()) std::printf("| %s | | | skipped | | | | | | | | | | | | |\n", name.c_str());
       ++skipped;
       continue;
@@ -75,11 +77,11 @@ int main(int argc, char** argv) {
       if (repair.method == spheremap::RepairMethod::kPerHandle) ++per_handle;
       int cuts = 0, fills = 0;
       for (const auto& c : repair.closures) (c.kind == spheremap::ClosureKind::kCut ? cuts : fills) += 1;
-      std::printf("| %s | %zu | %d | %s | %d | %d | %lld | %.1f | %.1f | %+.1f | %+.3f | %.1f | %d | %.1f | %.2f | %.1f |\n",
-                  name.c_str(), molecule.atoms.size(), repair.genus_before, spheremap::to_string(repair.method), cuts,
-                  fills,
-                  static_cast<long long>(repair.samples_changed), repair.volume_changed, repair.area_before, area, change,
-                  repair.genus_before > 0 ? area / repair.genus_before : 0.0, genus_after, seconds, repair_seconds, cpu);
+      std::printf(
+          "| %s | %zu | %d | %s | %d | %d | %lld | %.1f | %.1f | %+.1f | %+.3f | %.1f | %d | %.1f | %.2f | %.1f |\n",
+          name.c_str(), molecule.atoms.size(), repair.genus_before, spheremap::to_string(repair.method), cuts, fills,
+          static_cast<long long>(repair.samples_changed), repair.volume_changed, repair.area_before, area, change,
+          repair.genus_before > 0 ? area / repair.genus_before : 0.0, genus_after, seconds, repair_seconds, cpu);
     } catch (const std::exception& e) {
       ++failed;
       std::printf("| %s | | | error: %s | | | | | | | | | | | | |\n", name.c_str(), e.what());
@@ -87,12 +89,16 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   std::sort(changes.begin(), changes.end());
-  auto quantile = [&](double q) { return changes.empty() ? 0.0 : changes[static_cast<std::size_t>(q * (changes.size() - 1))]; };
+  auto quantile = [&](double q) {
+    return changes.empty() ? 0.0 : changes[static_cast<std::size_t>(q * (changes.size() - 1))];
+  };
   const auto over_one = std::count_if(changes.begin(), changes.end(), [](double c) { return c > 1.0; });
-  std::printf("\nSummary (grid %.2f Å, probe %.2f Å): %d structures measured, %d skipped, %d with handles repaired (%d per handle), "
-              "%d not genus 0 after; |area change| of the repaired: median %.3f%%, 90th percentile %.3f%%, max %.3f%%, "
-              "%lld above 1%%\n",
-              surface.grid, surface.probe, measured, skipped, repaired, per_handle, failed, quantile(0.5), quantile(0.9),
-              quantile(1.0), static_cast<long long>(over_one));
+  std::printf(
+      "\nSummary (grid %.2f Å, probe %.2f Å): %d structures measured, %d skipped, %d with handles repaired (%d per "
+      "handle), "
+      "%d not genus 0 after; |area change| of the repaired: median %.3f%%, 90th percentile %.3f%%, max %.3f%%, "
+      "%lld above 1%%\n",
+      surface.grid, surface.probe, measured, skipped, repaired, per_handle, failed, quantile(0.5), quantile(0.9),
+      quantile(1.0), static_cast<long long>(over_one));
   return failed == 0 ? 0 : 3;
 }

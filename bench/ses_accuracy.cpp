@@ -2,8 +2,8 @@
 // probe and contour vertex clamp. Prints one row per run (CPU time of solvent_excluded_surface included).
 //   ./build/ses_accuracy [--grid 0.5,0.25] [--probe 1.4,1.8] [--clamp 0.1,0] [--threads N] [--only 1crn,4hhb]
 // Needs ../shared/data (see BENCHMARKS.md, "Solvent-excluded surface").
-#include <ctime>
 #include <sys/resource.h>
+#include <ctime>
 
 #include <cstdio>
 #include <cstdlib>
@@ -52,18 +52,23 @@ int main(int argc, char** argv) {
   std::string only;
   int threads = 0;
   for (int a = 1; a + 1 < argc; a += 2) {
-    if (!std::strcmp(argv[a], "--grid")) grids = numbers(argv[a + 1]);
-    else if (!std::strcmp(argv[a], "--probe")) probes = numbers(argv[a + 1]);
-    else if (!std::strcmp(argv[a], "--clamp")) clamps = numbers(argv[a + 1]);
-    else if (!std::strcmp(argv[a], "--threads")) threads = std::atoi(argv[a + 1]);
-    else if (!std::strcmp(argv[a], "--only")) only = argv[a + 1];
+    if (!std::strcmp(argv[a], "--grid"))
+      grids = numbers(argv[a + 1]);
+    else if (!std::strcmp(argv[a], "--probe"))
+      probes = numbers(argv[a + 1]);
+    else if (!std::strcmp(argv[a], "--clamp"))
+      clamps = numbers(argv[a + 1]);
+    else if (!std::strcmp(argv[a], "--threads"))
+      threads = std::atoi(argv[a + 1]);
+    else if (!std::strcmp(argv[a], "--only"))
+      only = argv[a + 1];
     else {
       std::fprintf(stderr, "unknown option %s\n", argv[a]);
       return 1;
     }
   }
-  std::printf("%-5s %5s %5s %5s %10s %8s %10s %8s %5s %5s %8s\n", "pdb", "grid", "probe", "clamp", "area", "vs_msms", "volume",
-              "vs_msms", "comp", "genus", "cpu_s");
+  std::printf("%-5s %5s %5s %5s %10s %8s %10s %8s %5s %5s %8s\n", "pdb", "grid", "probe", "clamp", "area", "vs_msms",
+              "volume", "vs_msms", "comp", "genus", "cpu_s");
   for (const auto& reference : kReferences) {
     if (!only.empty() && only.find(reference.name) == std::string::npos) continue;
     const auto path = std::filesystem::path(SPHEREMAP_SHARED_DATA_DIR) / "pdb" / reference.file;
@@ -89,9 +94,11 @@ int main(int argc, char** argv) {
           const double msms_volume = probe == 1.4 ? reference.volume14 : 0;
           char area_pct[16] = "-", volume_pct[16] = "-";
           if (msms > 0) std::snprintf(area_pct, sizeof area_pct, "%+.2f%%", 100 * (outer.area / msms - 1));
-          if (msms_volume > 0) std::snprintf(volume_pct, sizeof volume_pct, "%+.2f%%", 100 * (outer.signed_volume / msms_volume - 1));
-          std::printf("%-5s %5.3g %5.2g %5.2g %10.1f %8s %10.1f %8s %5zu %5d %8.3f\n", reference.name, grid, probe, clamp, outer.area,
-                      area_pct, outer.signed_volume, volume_pct, components.size(), outer.genus, cpu);
+          if (msms_volume > 0)
+            std::snprintf(volume_pct, sizeof volume_pct, "%+.2f%%", 100 * (outer.signed_volume / msms_volume - 1));
+          std::printf("%-5s %5.3g %5.2g %5.2g %10.1f %8s %10.1f %8s %5zu %5d %8.3f\n", reference.name, grid, probe,
+                      clamp, outer.area, area_pct, outer.signed_volume, volume_pct, components.size(), outer.genus,
+                      cpu);
           std::fflush(stdout);
         }
   }

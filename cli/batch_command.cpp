@@ -17,8 +17,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "spheremap/pipeline/batch.hpp"
 #include "spheremap/error.hpp"
+#include "spheremap/pipeline/batch.hpp"
 #include "spheremap/text.hpp"
 
 namespace spheremap::cli {
@@ -91,9 +91,9 @@ class Reporter {
       tick(progress);
       return;
     }
-    std::string line = fmt::format("[{}/{}] {} -> {}: ", progress.already_done + progress.finished, progress.inputs,
-                                   valid_utf8(inputs_[outcome.index].path.string()),
-                                   valid_utf8(inputs_[outcome.index].name));
+    std::string line =
+        fmt::format("[{}/{}] {} -> {}: ", progress.already_done + progress.finished, progress.inputs,
+                    valid_utf8(inputs_[outcome.index].path.string()), valid_utf8(inputs_[outcome.index].name));
     std::set<RunStatus> distinct(outcome.statuses.begin(), outcome.statuses.end());
     if (distinct.size() == 1) {
       line += to_string(outcome.statuses.front());
@@ -103,7 +103,8 @@ class Reporter {
     }
     if (!outcome.message.empty())
       line += fmt::format(" (exit {}): {}", outcome.exit_code, valid_utf8(outcome.message));
-    else if (distinct.count(RunStatus::kNotCertified)) line += " — NOT CERTIFIED, written anyway (see report.json)";
+    else if (distinct.count(RunStatus::kNotCertified))
+      line += " — NOT CERTIFIED, written anyway (see report.json)";
     for (const auto& warning : outcome.warnings) line += fmt::format("; warning: {}", valid_utf8(warning));
     line += fmt::format(" [{:.1f} s]", outcome.seconds);
     clear_bar();
@@ -157,12 +158,12 @@ BatchCallbacks interrupt_callbacks(const BatchCommand& s, const BatchOptions& ba
   callbacks.on_tick = [&s, &batch, &inputs, &reporter, announced](const BatchProgress& progress) {
     if (!*announced && !s.quiet) {
       *announced = true;
-      std::cerr << fmt::format("spheremap batch: {} input(s) x {} weighting(s) into {}: {} already complete, "
-                               "{} to run, {} at a time\n",
-                               progress.inputs, batch.weights.size(), s.output, progress.already_done,
-                               progress.inputs - progress.already_done,
-                               std::min<std::size_t>(static_cast<std::size_t>(batch.jobs),
-                                                     progress.inputs - progress.already_done));
+      std::cerr << fmt::format(
+          "spheremap batch: {} input(s) x {} weighting(s) into {}: {} already complete, "
+          "{} to run, {} at a time\n",
+          progress.inputs, batch.weights.size(), s.output, progress.already_done,
+          progress.inputs - progress.already_done,
+          std::min<std::size_t>(static_cast<std::size_t>(batch.jobs), progress.inputs - progress.already_done));
     }
     if (g_signals >= 2) {
       // Abandon the running inputs: they leave no report.json (so they rerun on resume) and at
@@ -219,10 +220,11 @@ int report_end(const BatchCommand& s, const BatchOptions& batch, const BatchResu
 }
 
 void BatchCommand::add(CLI::App* command) {
-  command->add_option("inputs", inputs,
-                      "Inputs: files; folders (their .obj .off .ply .stl .pdb .ent .cif .mmcif .pqr (.gz) files, not "
-                      "recursive); glob patterns ('data/*.pdb', quoted or expanded by the shell); @LIST or LIST.txt "
-                      "(one input per line, relative to the list's folder)")
+  command
+      ->add_option("inputs", inputs,
+                   "Inputs: files; folders (their .obj .off .ply .stl .pdb .ent .cif .mmcif .pqr (.gz) files, not "
+                   "recursive); glob patterns ('data/*.pdb', quoted or expanded by the shell); @LIST or LIST.txt "
+                   "(one input per line, relative to the list's folder)")
       ->required();
   add_output_option(command, output,
                     "Output root: one folder per input (per weighting with several), summary.csv, summary.jsonl");

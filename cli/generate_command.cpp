@@ -47,8 +47,8 @@ struct GenerateCommand {
         ->check(CLI::Range(2, 100000));
     command->add_option("--segments", segments, "dumbbell, tube-u, tube-c: vertices per ring")
         ->check(CLI::Range(3, 1000));
-    command->add_option("--vertices", vertices,
-                        "stacked: vertices (a tetrahedron with vertices inserted into triangles)")
+    command
+        ->add_option("--vertices", vertices, "stacked: vertices (a tetrahedron with vertices inserted into triangles)")
         ->check(CLI::Range(4, 10000000));
     command->add_option("--nesting", nesting, "stacked: probability of inserting into a triangle just made (depth)")
         ->check(finite_number(0, 1));
@@ -77,9 +77,10 @@ struct GenerateCommand {
 
   int run() const {
     if (vertices_asked() > kMaxVertices)
-      throw InputError(fmt::format("generate {}: {:.3g} vertices asked for, more than the {:.0e} generate writes; "
-                                   "choose a smaller size",
-                                   shape, vertices_asked(), kMaxVertices));
+      throw InputError(
+          fmt::format("generate {}: {:.3g} vertices asked for, more than the {:.0e} generate writes; "
+                      "choose a smaller size",
+                      shape, vertices_asked(), kMaxVertices));
     try {
       return generate();
     } catch (const std::invalid_argument& e) {  // a combination of options the shape does not take

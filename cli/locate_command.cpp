@@ -48,7 +48,8 @@ int locate_point_command(const Globe& globe, double lat, double lon) {
     const ResidueLabel& r = globe.residues[at.residue];
     std::cout << fmt::format("residue {} {}\n", residue_id(r), r.name);
     std::string corners;
-    for (const std::int32_t c : at.corner_residues) corners += (corners.empty() ? "" : ", ") + residue_id(globe.residues[c]);
+    for (const std::int32_t c : at.corner_residues)
+      corners += (corners.empty() ? "" : ", ") + residue_id(globe.residues[c]);
     std::cout << "residues of the triangle's corners: " << corners << "\n";
   } else {
     std::cout << "residue: none (" << (globe.residues.empty() ? no_residues_text(globe) : "no atom there") << ")\n";
@@ -93,7 +94,8 @@ int LocateCommand::run() {
   if (point == !residue.empty())
     throw InputError("give either --lat and --lon, or --residue (e.g. spheremap locate out/ --lat 12.5 --lon -40)");
   if (point && (!latitude || !longitude)) throw InputError("--lat and --lon go together: give both");
-  if (point && !(std::abs(*latitude) <= 90)) throw InputError(fmt::format("--lat {}: it must be in -90..90", *latitude));
+  if (point && !(std::abs(*latitude) <= 90))
+    throw InputError(fmt::format("--lat {}: it must be in -90..90", *latitude));
   if (point && !(std::abs(*longitude) <= 180))
     throw InputError(fmt::format("--lon {}: it must be in -180..180", *longitude));
   if (!residue.empty()) parse_residue_selection(residue);  // a typo fails before the folder is read

@@ -19,14 +19,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   const std::vector<spheremap::cli::Command> commands = {
-      spheremap::cli::add_map_command(app),
-      spheremap::cli::add_surface_command(app),
-      spheremap::cli::add_generate_command(app),
-      spheremap::cli::add_batch_command(app),
-      spheremap::cli::add_table_command(app),
-      spheremap::cli::add_render_command(app),
-      spheremap::cli::add_view_command(app),
-      spheremap::cli::add_locate_command(app),
+      spheremap::cli::add_map_command(app),      spheremap::cli::add_surface_command(app),
+      spheremap::cli::add_generate_command(app), spheremap::cli::add_batch_command(app),
+      spheremap::cli::add_table_command(app),    spheremap::cli::add_render_command(app),
+      spheremap::cli::add_view_command(app),     spheremap::cli::add_locate_command(app),
   };
 
   try {

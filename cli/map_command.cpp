@@ -105,9 +105,10 @@ int map_one(const MapCommand& s) {
 }
 
 void MapCommand::add(CLI::App* command) {
-  command->add_option("input", input,
-                      "Mesh file: .obj .off .ply (ASCII/binary) .stl (ASCII/binary); or structure file: .pdb .ent "
-                      ".cif .mmcif (also .gz) .pqr")
+  command
+      ->add_option("input", input,
+                   "Mesh file: .obj .off .ply (ASCII/binary) .stl (ASCII/binary); or structure file: .pdb .ent "
+                   ".cif .mmcif (also .gz) .pqr")
       ->required();
   add_output_option(command, output,
                     "Output folder: surface.ply, sphere.ply, report.json, pictures/ (maps and hemisphere figures), "
@@ -116,10 +117,11 @@ void MapCommand::add(CLI::App* command) {
   command->add_option("--poles", poles,
                       "North and south pole vertices 'i,j': 0-based indices in the input file's vertex order, at "
                       "least 3 edges apart; default: the two vertices farthest apart");
-  command->add_option("--components", components,
-                      "Structures: 'outer' (default: the outer surface; cavities and detached pieces reported) or "
-                      "'all' (every genus-0 component on its own sphere, in OUTPUT/component-K/, K by decreasing "
-                      "area)")
+  command
+      ->add_option("--components", components,
+                   "Structures: 'outer' (default: the outer surface; cavities and detached pieces reported) or "
+                   "'all' (every genus-0 component on its own sphere, in OUTPUT/component-K/, K by decreasing "
+                   "area)")
       ->check(CLI::IsMember({"outer", "all"}));
   add_quiet_flag(command, quiet);
   command->add_flag("--force", force,

@@ -42,10 +42,11 @@ std::string preset_help(PresetScope scope) {
 }
 
 void add_equalizing_rounds_option(CLI::App* command, MapOptions& options) {
-  command->add_option("--equalizing-rounds", options.max_equalizing_rounds,
-                      "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets "
-                      "more evenly, each kept only if the map stays certified and its area distortion drops (default "
-                      "12; 0: faster, the first certified map)")
+  command
+      ->add_option("--equalizing-rounds", options.max_equalizing_rounds,
+                   "After re-weighting has certified a map: at most this many rounds that spread limbs and pockets "
+                   "more evenly, each kept only if the map stays certified and its area distortion drops (default "
+                   "12; 0: faster, the first certified map)")
       ->check(CLI::Range(0, 1000));
 }
 
@@ -71,7 +72,6 @@ CLI::Validator finite_number(double low, double high, LowEnd low_end, const std:
   };
   return CLI::Validator(check, expected);
 }
-
 
 void StructureCliOptions::add(CLI::App* cmd, MapJobOptions& options, PresetScope scope) {
   command = cmd;
@@ -138,8 +138,9 @@ void StructureCliOptions::apply(MapJobOptions& options) const {
 
 void MapCliOptions::add(CLI::App* command, WeightingCount count) {
   if (count == WeightingCount::kOne) {
-    command->add_option("--weights", weights,
-                        "Harmonic weights: uniform (the paper, default), cotan (may fold), mean-value")
+    command
+        ->add_option("--weights", weights,
+                     "Harmonic weights: uniform (the paper, default), cotan (may fold), mean-value")
         ->check(CLI::IsMember({"uniform", "cotan", "mean-value"}));
   } else {
     command->add_option("--weights", weights,
@@ -151,11 +152,13 @@ void MapCliOptions::add(CLI::App* command, WeightingCount count) {
   command->add_option("--component", component,
                       "Which connected component to map: 'largest' or a number (meshes: file order, default refuse; "
                       "structures: by decreasing area, default 0 = the outer surface)");
-  command->add_option("--weld-tolerance", job.prepare.weld_tolerance,
-                      "Weld vertices closer than this (default 0: exactly coincident only)")
+  command
+      ->add_option("--weld-tolerance", job.prepare.weld_tolerance,
+                   "Weld vertices closer than this (default 0: exactly coincident only)")
       ->check(finite_number(0, kUnbounded));
-  command->add_option("--collapse-floor", job.map.collapse_floor,
-                      "Normalized area ratio below which a triangle counts as collapsed (default 1e-6; below 1)")
+  command
+      ->add_option("--collapse-floor", job.map.collapse_floor,
+                   "Normalized area ratio below which a triangle counts as collapsed (default 1e-6; below 1)")
       ->check(finite_number(0, 1, LowEnd::kExcluded));
   command->add_flag("--ascii", job.ascii, "Write ASCII PLY with full precision (%.17g), e.g. for PyMOL");
   add_equalizing_rounds_option(command, job.map);
@@ -236,9 +239,10 @@ void PropertyCliOptions::add(CLI::App* command, MapJobOptions& job) {
   command->add_option("--color", job.colour,
                       "Property the PLY files' vertex colours show (default: electrostatics, else hydrophobicity, "
                       "else octant)");
-  command->add_option("--values", values,
-                      "CSV/TSV of per-residue or per-atom values (columns chain, residue_number, optional "
-                      "insertion_code and atom_name, then value columns: one property each); repeatable")
+  command
+      ->add_option("--values", values,
+                   "CSV/TSV of per-residue or per-atom values (columns chain, residue_number, optional "
+                   "insertion_code and atom_name, then value columns: one property each); repeatable")
       ->check(CLI::ExistingFile);
   command->add_option("--charges", charges,
                       "Charges of the Coulomb potential: formal (built-in table), pdb2pqr, or a PQR file (default: a "
@@ -250,8 +254,9 @@ void PropertyCliOptions::add(CLI::App* command, MapJobOptions& job) {
       ->check(finite_number(0, 1e5, LowEnd::kExcluded, " K"));
   command->add_option("--dielectric", dielectric,
                       "Coulomb dielectric: '4r' (distance-dependent, default) or a constant such as 80");
-  command->add_option("--potential-offset", e.offset,
-                      "Å: the potential is taken this far out along each vertex normal (default 1.4)")
+  command
+      ->add_option("--potential-offset", e.offset,
+                   "Å: the potential is taken this far out along each vertex normal (default 1.4)")
       ->check(finite_number(0, 100, LowEnd::kIncluded, " Å"));
   command->add_option("--force-field", force_field, "pdb2pqr's force field: amber (default) or parse")
       ->check(CLI::IsMember({"amber", "parse"}));
@@ -300,8 +305,8 @@ void PropertyCliOptions::apply(MapJobOptions& job) const {
       used = 0;
     }
     if (used == 0 || used != number.size() || !(value > 0))
-      throw InputError(fmt::format("--dielectric '{}': expected a positive number, with 'r' for ε = κr (e.g. 4r, 80)",
-                                   dielectric));
+      throw InputError(
+          fmt::format("--dielectric '{}': expected a positive number, with 'r' for ε = κr (e.g. 4r, 80)", dielectric));
     e.coulomb.dielectric = distance ? Dielectric::kDistanceDependent : Dielectric::kConstant;
     e.coulomb.dielectric_value = value;
   }

@@ -30,9 +30,8 @@ std::string structure_name(const std::filesystem::path& input) {
 
 Globe globe_of(const MapJobResult& result) {
   const Mesh& surface = result.prepared.mesh;
-  std::vector<SurfaceProperty> properties = result.properties.empty()
-                                                ? properties_from_attributes(surface, result.map.sphere)
-                                                : result.properties;
+  std::vector<SurfaceProperty> properties =
+      result.properties.empty() ? properties_from_attributes(surface, result.map.sphere) : result.properties;
   return make_globe(surface, result.map.sphere, std::move(properties), structure_name(result.input));
 }
 
@@ -46,8 +45,8 @@ Globe globe_of(const MapFolder& folder) {
     globe.no_residues_reason = folder.no_residues_reason;
     return globe;
   } catch (const std::invalid_argument& e) {
-    throw InputError(fmt::format("{}: the map's files do not fit together ({}); map again", folder.folder.string(),
-                                 e.what()));
+    throw InputError(
+        fmt::format("{}: the map's files do not fit together ({}); map again", folder.folder.string(), e.what()));
   }
 }
 

@@ -69,9 +69,9 @@ int RenderCommand::run() {
     throw InputError(fmt::format("--property '{}': {} has no such property; it has {}", property, folder,
                                  globe_property_names(globe)));
   const std::string stem = property + "-" + (hemispheres ? "hemispheres" : std::string(to_string(*parsed_projection)));
-  const std::filesystem::path path =
-      output.empty() ? std::filesystem::path(folder) / "pictures" / (stem + "." + std::string(to_string(*parsed_format)))
-                     : std::filesystem::path(output);
+  const std::filesystem::path path = output.empty() ? std::filesystem::path(folder) / "pictures" /
+                                                          (stem + "." + std::string(to_string(*parsed_format)))
+                                                    : std::filesystem::path(output);
   std::string picture, grid;
   if (hemispheres) {
     HemisphereOptions options;

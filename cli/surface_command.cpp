@@ -18,29 +18,30 @@ void print_surface(const std::string& output, const MapJobOptions& options, cons
   const Mesh& surface = result.mesh;
   double area = 0;
   for (const auto& c : result.components) area += c.area;
-  std::cout << fmt::format("{}: {} vertices, {} triangles; contour area {:.1f} Å² (all components; probe {} Å, grid "
-                           "{} Å)\n",
-                           output, surface.vertex_count(), surface.triangle_count(), area, options.surface.probe,
-                           options.surface.grid);
+  std::cout << fmt::format(
+      "{}: {} vertices, {} triangles; contour area {:.1f} Å² (all components; probe {} Å, grid "
+      "{} Å)\n",
+      output, surface.vertex_count(), surface.triangle_count(), area, options.surface.probe, options.surface.grid);
   for (std::size_t c = 0; c < result.reports.size(); ++c) {
     const auto& r = result.reports[c];
-    std::cout << fmt::format("  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} "
-                             "residues\n",
-                             c, to_string(r.kind), r.triangles, r.area, r.volume, r.genus, r.residue_count);
+    std::cout << fmt::format(
+        "  component {}: {}, {} triangles, area {:.1f} Å², volume {:.1f} Å³, genus {}, {} "
+        "residues\n",
+        c, to_string(r.kind), r.triangles, r.area, r.volume, r.genus, r.residue_count);
   }
   if (options.simplify.target_edge_length > 0)
-    std::cout << fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g} Å), area {:.1f} -> {:.1f} "
-                             "Å², every removed vertex within {:.3g} Å of the result\n",
-                             simplification.vertices_before, simplification.vertices_after,
-                             simplification.mean_edge_before, simplification.mean_edge_after,
-                             simplification.area_before, simplification.area_after,
-                             simplification.max_vertex_distance);
+    std::cout << fmt::format(
+        "  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g} Å), area {:.1f} -> {:.1f} "
+        "Å², every removed vertex within {:.3g} Å of the result\n",
+        simplification.vertices_before, simplification.vertices_after, simplification.mean_edge_before,
+        simplification.mean_edge_after, simplification.area_before, simplification.area_after,
+        simplification.max_vertex_distance);
   if (repair.method != RepairMethod::kNone)
-    std::cout << fmt::format("  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
-                             "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
-                             to_string(repair.method), repair.genus_before, repair.closures.size(),
-                             repair.samples_changed, repair.area_before, repair.area_after,
-                             100 * (repair.area_after / repair.area_before - 1));
+    std::cout << fmt::format(
+        "  handle repair ({}): outer genus {} -> 0, {} change(s), {} grid samples; outer area "
+        "{:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
+        to_string(repair.method), repair.genus_before, repair.closures.size(), repair.samples_changed,
+        repair.area_before, repair.area_after, 100 * (repair.area_after / repair.area_before - 1));
   else if (repair.genus_before != 0)
     std::cout << fmt::format("  outer surface genus {} (--keep-topology: not repaired)\n", repair.genus_before);
   std::string stages;

@@ -94,9 +94,8 @@ std::vector<std::string> write_figure4b(const fs::path& output, const std::vecto
       "ten-fold smaller than the mean){}. It is the surface with the median triangle count among the {} "
       "distinct inputs (lower median; ties by name); the surface does not depend on the weighting.",
       typical.input, with_thousands(typical.triangles), surface_file.string(),
-      h.edges.back() == std::numeric_limits<double>::infinity()
-          ? "; the last bar holds every triangle of 300% or more"
-          : "",
+      h.edges.back() == std::numeric_limits<double>::infinity() ? "; the last bar holds every triangle of 300% or more"
+                                                                : "",
       distinct));
   return {"figure4b.png/.svg"};
 }
@@ -107,9 +106,10 @@ void print_summaries(const fs::path& runs_dir, const fs::path& output, std::size
   std::string per_protocol;
   for (const auto& summary : summaries)
     per_protocol += fmt::format("{}{}: {}", per_protocol.empty() ? "" : ", ", summary.weights, summary.surfaces);
-  std::cout << fmt::format("{}: {} report.json found ({}); {} error.json (failed runs) and folders "
-                           "without report.json are not in the table\n",
-                           runs_dir.string(), reports, per_protocol, context.error_runs);
+  std::cout << fmt::format(
+      "{}: {} report.json found ({}); {} error.json (failed runs) and folders "
+      "without report.json are not in the table\n",
+      runs_dir.string(), reports, per_protocol, context.error_runs);
   for (const auto& summary : summaries)
     std::cout << fmt::format(
         "  {}: plain algorithm {} folded ({} of {} surfaces correct); final {} folded, {} of {} certified; "
@@ -125,9 +125,10 @@ int TableCommand::run() const {
   const fs::path runs = runs_dir;
   const std::vector<fs::path> found = find_reports(runs);
   if (found.empty())
-    throw InputError(fmt::format("{}: no report.json found (searched every subfolder); run spheremap batch "
-                                 "or spheremap map into this folder first",
-                                 runs.string()));
+    throw InputError(
+        fmt::format("{}: no report.json found (searched every subfolder); run spheremap batch "
+                    "or spheremap map into this folder first",
+                    runs.string()));
   std::vector<ReportSummary> reports;
   reports.reserve(found.size());
   for (const auto& report : found) reports.push_back(read_report_file(report));

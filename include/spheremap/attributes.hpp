@@ -5,8 +5,8 @@
 namespace spheremap::attributes {
 
 // Atom provenance of a molecular surface's vertices (add_nearest_atoms, add_atom_provenance).
-inline constexpr const char* kAtomId = "atomid";  // integer: index into the atoms (the Mol* convention)
-inline constexpr const char* kAtomSerial = "vertex_atom_serial";        // integer
+inline constexpr const char* kAtomId = "atomid";                  // integer: index into the atoms (the Mol* convention)
+inline constexpr const char* kAtomSerial = "vertex_atom_serial";  // integer
 inline constexpr const char* kResidueNumber = "vertex_residue_number";  // integer
 inline constexpr const char* kModel = "vertex_model";                   // integer
 inline constexpr const char* kAtomName = "vertex_atom_name";            // text
@@ -18,8 +18,8 @@ inline constexpr const char* kBFactor = "vertex_b_factor";              // real:
 inline constexpr const char* kCharge = "vertex_charge";                 // real: PQR files
 
 // The map's outputs (write_map_outputs).
-inline constexpr const char* kTheta = "theta";  // real: polar angle from the north pole, in [0, π]
-inline constexpr const char* kPhi = "phi";      // real: azimuth, in [0, 2π)
+inline constexpr const char* kTheta = "theta";               // real: polar angle from the north pole, in [0, π]
+inline constexpr const char* kPhi = "phi";                   // real: azimuth, in [0, 2π)
 inline constexpr const char* kInputVertex = "input_vertex";  // integer: the vertex's index in the input file
 inline constexpr const char* kNormalX = "nx";  // float: the surface's unit vertex normal (on both PLY files)
 inline constexpr const char* kNormalY = "ny";

@@ -82,8 +82,8 @@ struct TripleProduct {
   int sign;
   int row0_column, row1_column, row2_column;
 };
-constexpr std::array<TripleProduct, 6> kDeterminantTerms{{
-    {+1, 0, 1, 2}, {-1, 0, 2, 1}, {+1, 1, 2, 0}, {-1, 1, 0, 2}, {+1, 2, 0, 1}, {-1, 2, 1, 0}}};
+constexpr std::array<TripleProduct, 6> kDeterminantTerms{
+    {{+1, 0, 1, 2}, {-1, 0, 2, 1}, {+1, 1, 2, 0}, {-1, 1, 0, 2}, {+1, 2, 0, 1}, {-1, 2, 1, 0}}};
 
 int sign_of_last_component(const std::vector<double>& expansion) {
   if (expansion.empty()) return 0;
@@ -184,8 +184,8 @@ int determinant_sign_by_big_integers(const Matrix3& m) {
     if (x == 0 || y == 0 || z == 0) continue;
     const bool negative = (term.sign < 0) != ((x < 0) != ((y < 0) != (z < 0)));
     const auto bx = decompose(x), by = decompose(y), bz = decompose(z);
-    terms.push_back({negative, multiply(multiply(bx.mantissa, by.mantissa), bz.mantissa),
-                     bx.exponent + by.exponent + bz.exponent});
+    terms.push_back(
+        {negative, multiply(multiply(bx.mantissa, by.mantissa), bz.mantissa), bx.exponent + by.exponent + bz.exponent});
   }
   if (terms.empty()) return 0;
   std::int64_t lowest_exponent = terms.front().exponent;

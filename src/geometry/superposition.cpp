@@ -39,8 +39,7 @@ Superposition superpose_sphere_on_surface(const std::vector<Vec3>& surface_point
                                           const std::vector<Vec3>& sphere_points) {
   if (surface_points.size() != sphere_points.size() || surface_points.size() < 3)
     throw std::invalid_argument("superpose_sphere_on_surface: needs two equally long lists of at least 3 points, got " +
-                                std::to_string(surface_points.size()) + " and " +
-                                std::to_string(sphere_points.size()));
+                                std::to_string(surface_points.size()) + " and " + std::to_string(sphere_points.size()));
   const auto n = static_cast<double>(surface_points.size());
 
   Superposition result;
@@ -69,8 +68,8 @@ Superposition superpose_sphere_on_surface(const std::vector<Vec3>& surface_point
 
   double squared_residual = 0;
   for (std::size_t i = 0; i < surface_points.size(); ++i)
-    squared_residual += squared_distance(result.scale * rotate(result.rotation, sphere_points[i]),
-                                         surface_points[i] - result.centroid);
+    squared_residual +=
+        squared_distance(result.scale * rotate(result.rotation, sphere_points[i]), surface_points[i] - result.centroid);
   result.rmsd = std::sqrt(squared_residual / n);
   return result;
 }

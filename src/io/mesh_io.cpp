@@ -27,7 +27,8 @@ void fail(const std::string& file, const std::string& problem, const std::string
 
 std::size_t line_number_at(std::string_view text, std::size_t offset) {
   offset = std::min(offset, text.size());
-  return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+  return 1 +
+         static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
 }
 
 void require_text(std::string_view text, const std::string& file, std::string_view format_name,
@@ -72,7 +73,8 @@ std::string read_whole_file(const std::filesystem::path& path, const std::string
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) fail(file, "the file does not exist", "check the path");
-  if (std::filesystem::is_directory(status)) fail(file, "this is a folder, not a mesh file", "give the path of a mesh file");
+  if (std::filesystem::is_directory(status))
+    fail(file, "this is a folder, not a mesh file", "give the path of a mesh file");
 
   const auto close_file = [](std::FILE* stream) { std::fclose(stream); };
   std::unique_ptr<std::FILE, decltype(close_file)> stream(std::fopen(path.c_str(), "rb"), close_file);
@@ -122,15 +124,17 @@ void check_soup(const PolygonSoup& soup, const std::string& file, int first_inde
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
     const auto& face = soup.faces[f];
     if (face.size() < 3) {
-      fail(file, fmt::format("face {} has {} corner(s), fewer than 3", f + static_cast<std::size_t>(first_index), face.size()),
-           "remove degenerate faces (points and edges) from the mesh");
+      fail(
+          file,
+          fmt::format("face {} has {} corner(s), fewer than 3", f + static_cast<std::size_t>(first_index), face.size()),
+          "remove degenerate faces (points and edges) from the mesh");
     }
     for (const std::int32_t index : face) {
       if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
-        const std::string valid_range =
-            vertex_count == 0 ? std::string("the file has no vertices")
-                              : fmt::format("the vertices are numbered {} to {}", first_index,
-                                            static_cast<std::int64_t>(vertex_count) - 1 + first_index);
+        const std::string valid_range = vertex_count == 0
+                                            ? std::string("the file has no vertices")
+                                            : fmt::format("the vertices are numbered {} to {}", first_index,
+                                                          static_cast<std::int64_t>(vertex_count) - 1 + first_index);
         fail(file,
              fmt::format("face {} refers to vertex {}, but {}", f + static_cast<std::size_t>(first_index),
                          static_cast<std::int64_t>(index) + first_index, valid_range),

@@ -33,25 +33,29 @@ void read_face(std::string_view rest, std::size_t line_number, PolygonSoup& soup
     std::int64_t index = 0;
     const std::size_t used = parse_integer_prefix(token, index);
     if (used == 0 || (used < token.size() && token[used] != '/')) {
-      fail(file, fmt::format("line {}: face {} has the corner {}, not a vertex index", line_number, face_number,
-                             quote(token)),
-           kFix);
+      fail(
+          file,
+          fmt::format("line {}: face {} has the corner {}, not a vertex index", line_number, face_number, quote(token)),
+          kFix);
     }
     if (index == 0) {
-      fail(file, fmt::format("line {}: face {} refers to vertex 0, but OBJ vertices are numbered from 1",
-                             line_number, face_number),
+      fail(file,
+           fmt::format("line {}: face {} refers to vertex 0, but OBJ vertices are numbered from 1", line_number,
+                       face_number),
            kFix);
     }
     // Negative indices count back from the last vertex read so far (-1 is the latest).
     const std::int64_t zero_based = index > 0 ? index - 1 : vertices_so_far + index;
     if (zero_based < 0) {
-      fail(file, fmt::format("line {}: face {} refers to vertex {}, but only {} vertices precede it", line_number,
-                             face_number, index, vertices_so_far),
+      fail(file,
+           fmt::format("line {}: face {} refers to vertex {}, but only {} vertices precede it", line_number,
+                       face_number, index, vertices_so_far),
            kFix);
     }
     if (zero_based > std::numeric_limits<std::int32_t>::max()) {
-      fail(file, fmt::format("line {}: face {} refers to vertex {}, beyond any supported mesh size", line_number,
-                             face_number, index),
+      fail(file,
+           fmt::format("line {}: face {} refers to vertex {}, beyond any supported mesh size", line_number, face_number,
+                       index),
            kFix);
     }
     corners.push_back(static_cast<std::int32_t>(zero_based));

@@ -42,9 +42,7 @@ class DataLines {
   std::size_t line_number_ = 0;
 };
 
-bool is_off_keyword(std::string_view token) {
-  return token.size() >= 3 && token.substr(token.size() - 3) == "OFF";
-}
+bool is_off_keyword(std::string_view token) { return token.size() >= 3 && token.substr(token.size() - 3) == "OFF"; }
 
 /// Reads `V F [E]` from `line`; returns {V, F}.
 std::pair<std::int64_t, std::int64_t> read_counts(std::string_view line, std::size_t line_number,
@@ -128,8 +126,8 @@ PolygonSoup read_off(std::string_view bytes, const std::string& file) {
     const std::string_view count_token = take_token(line);
     if (!parse_integer(count_token, corner_count) || corner_count < 0) {
       fail(file,
-           fmt::format("line {}: face {} should start with its corner count but starts with {}",
-                       lines.line_number(), f, quote(count_token)),
+           fmt::format("line {}: face {} should start with its corner count but starts with {}", lines.line_number(), f,
+                       quote(count_token)),
            kFix);
     }
     // Each index takes at least two characters, which bounds the reservation.
@@ -140,8 +138,8 @@ PolygonSoup read_off(std::string_view bytes, const std::string& file) {
       std::int64_t index = 0;
       if (!parse_integer(token, index)) {
         fail(file,
-             fmt::format("line {}: face {} has {} corners but its index {} is {}", lines.line_number(), f,
-                         corner_count, c + 1, token.empty() ? std::string("missing") : quote(token)),
+             fmt::format("line {}: face {} has {} corners but its index {} is {}", lines.line_number(), f, corner_count,
+                         c + 1, token.empty() ? std::string("missing") : quote(token)),
              kFix);
       }
       if (index < 0 || index > std::numeric_limits<std::int32_t>::max()) {

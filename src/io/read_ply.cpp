@@ -27,11 +27,21 @@ struct PlyTypeName {
 
 // Both the original names and the sized aliases written by newer exporters.
 constexpr std::array<PlyTypeName, 16> kPlyTypeNames = {{
-    {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},     {"uchar", PlyType::kUint8},
-    {"uint8", PlyType::kUint8},   {"short", PlyType::kInt16},   {"int16", PlyType::kInt16},
-    {"ushort", PlyType::kUint16}, {"uint16", PlyType::kUint16}, {"int", PlyType::kInt32},
-    {"int32", PlyType::kInt32},   {"uint", PlyType::kUint32},   {"uint32", PlyType::kUint32},
-    {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+    {"char", PlyType::kInt8},
+    {"int8", PlyType::kInt8},
+    {"uchar", PlyType::kUint8},
+    {"uint8", PlyType::kUint8},
+    {"short", PlyType::kInt16},
+    {"int16", PlyType::kInt16},
+    {"ushort", PlyType::kUint16},
+    {"uint16", PlyType::kUint16},
+    {"int", PlyType::kInt32},
+    {"int32", PlyType::kInt32},
+    {"uint", PlyType::kUint32},
+    {"uint32", PlyType::kUint32},
+    {"float", PlyType::kFloat32},
+    {"float32", PlyType::kFloat32},
+    {"double", PlyType::kFloat64},
     {"float64", PlyType::kFloat64},
 }};
 
@@ -132,8 +142,7 @@ PlyHeader parse_header(std::string_view bytes, const std::string& file) {
       std::int64_t count = 0;
       const std::string_view count_token = take_token(rest);
       if (element.name.empty() || !parse_integer(count_token, count) || count < 0) {
-        fail(file, fmt::format("line {}: bad PLY header: expected 'element <name> <count>'", line_number),
-             kHeaderFix);
+        fail(file, fmt::format("line {}: bad PLY header: expected 'element <name> <count>'", line_number), kHeaderFix);
       }
       element.count = static_cast<std::uint64_t>(count);
       header.elements.push_back(std::move(element));
@@ -160,8 +169,7 @@ PlyHeader parse_header(std::string_view bytes, const std::string& file) {
       }
       header.elements.back().properties.push_back(std::move(property));
     } else {
-      fail(file, fmt::format("line {}: bad PLY header: unknown keyword {}", line_number, quote(keyword)),
-           kHeaderFix);
+      fail(file, fmt::format("line {}: bad PLY header: unknown keyword {}", line_number, quote(keyword)), kHeaderFix);
     }
   }
   if (!has_format) fail(file, "bad PLY header: no 'format' line", kHeaderFix);
@@ -317,8 +325,7 @@ class AsciiValues {
   [[noreturn]] void bad_token(std::string_view token, std::string_view expected) const {
     const auto offset = static_cast<std::size_t>(token.data() - whole_file_.data());
     fail(file_,
-         fmt::format("line {}: expected {} but found {}", line_number_at(whole_file_, offset), expected,
-                     quote(token)),
+         fmt::format("line {}: expected {} but found {}", line_number_at(whole_file_, offset), expected, quote(token)),
          "fix the line or re-export the mesh");
   }
 
@@ -387,7 +394,8 @@ PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& 
           std::int64_t length = 0;
           if (!values.read_integer(property.count_type, length)) fail_truncated(file, element, i);
           if (length < 0) {
-            fail(file, fmt::format("{} {} has a list '{}' of negative length {}", element.name, i, property.name, length),
+            fail(file,
+                 fmt::format("{} {} has a list '{}' of negative length {}", element.name, i, property.name, length),
                  "the file is corrupt; re-export the mesh");
           }
           if (is_vertex && attributes != nullptr && property.type == PlyType::kUint8) {
@@ -398,8 +406,8 @@ PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& 
               text.push_back(static_cast<char>(byte));
             }
             TextAttribute& attribute = attributes->text[property.name];
-            auto [found, inserted] =
-                attributes->text_codes[property.name].try_emplace(text, static_cast<std::int32_t>(attribute.dictionary.size()));
+            auto [found, inserted] = attributes->text_codes[property.name].try_emplace(
+                text, static_cast<std::int32_t>(attribute.dictionary.size()));
             if (inserted) attribute.dictionary.push_back(text);
             attribute.codes.push_back(found->second);
           } else if (is_face && p == layout.index_property) {
@@ -423,9 +431,7 @@ PolygonSoup read_body(const PlyHeader& header, const PlyLayout& layout, Values& 
           }
         } else if (is_vertex && (p == layout.coordinate_property[0] || p == layout.coordinate_property[1] ||
                                  p == layout.coordinate_property[2])) {
-          const std::size_t axis = p == layout.coordinate_property[0]   ? 0
-                                   : p == layout.coordinate_property[1] ? 1
-                                                                        : 2;
+          const std::size_t axis = p == layout.coordinate_property[0] ? 0 : p == layout.coordinate_property[1] ? 1 : 2;
           if (!values.read_real(property.type, position[axis])) fail_truncated(file, element, i);
         } else if (is_vertex && attributes != nullptr && is_integer_type(property.type)) {
           std::int64_t value = 0;
@@ -452,8 +458,9 @@ PolygonSoup read_ply(std::string_view bytes, const std::string& file, PlyVertexA
   const PlyLayout layout = find_layout(header, file);
   if (header.elements[layout.vertex_element].count >
       static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max())) {
-    fail(file, fmt::format("the header declares {} vertices, more than the 2^31 - 1 supported",
-                           header.elements[layout.vertex_element].count),
+    fail(file,
+         fmt::format("the header declares {} vertices, more than the 2^31 - 1 supported",
+                     header.elements[layout.vertex_element].count),
          "simplify the mesh first");
   }
   if (header.format == PlyFormat::kAscii) {

@@ -40,8 +40,8 @@ PolygonSoup read_binary_stl(std::string_view bytes, std::uint64_t triangle_count
     const auto first = static_cast<std::int32_t>(soup.positions.size());
     for (std::size_t corner = 0; corner < 3; ++corner) {
       const char* at = triangle + 12 * (corner + 1);  // the facet normal comes first
-      soup.positions.push_back({load_little_endian_float(at), load_little_endian_float(at + 4),
-                                load_little_endian_float(at + 8)});
+      soup.positions.push_back(
+          {load_little_endian_float(at), load_little_endian_float(at + 4), load_little_endian_float(at + 8)});
     }
     soup.faces.push_back({first, first + 1, first + 2});
   }
@@ -80,9 +80,10 @@ PolygonSoup read_ascii_stl(std::string_view bytes, const std::string& file) {
       skip_rest_of_line(rest);  // the solid's name, which may hold any words
     } else if (token == "facet") {
       if (inside_facet) {
-        fail(file, fmt::format("line {}: facet {} starts before the previous one ends", line_of(token),
-                               soup.faces.size() + 1),
-             "add the missing 'endfacet' or re-export the mesh");
+        fail(
+            file,
+            fmt::format("line {}: facet {} starts before the previous one ends", line_of(token), soup.faces.size() + 1),
+            "add the missing 'endfacet' or re-export the mesh");
       }
       inside_facet = true;
       corners.clear();

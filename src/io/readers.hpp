@@ -10,10 +10,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
-#include <vector>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "spheremap/mesh.hpp"
 

@@ -117,8 +117,7 @@ DistortionMetrics measure_distortion(const Mesh& surface, const std::vector<Vec3
 
     for (int corner = 0; corner < 3; ++corner) {
       const int next = (corner + 1) % 3, previous = (corner + 2) % 3;
-      const auto sphere_angle =
-          angle_between(arc_tangent(s[corner], s[next]), arc_tangent(s[corner], s[previous]));
+      const auto sphere_angle = angle_between(arc_tangent(s[corner], s[next]), arc_tangent(s[corner], s[previous]));
       const auto surface_angle = angle_between(p[next] - p[corner], p[previous] - p[corner]);
       if (sphere_angle && surface_angle)
         angle_deviation.add(std::fabs(*sphere_angle - *surface_angle) * kDegreesPerRadian);

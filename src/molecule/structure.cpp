@@ -79,18 +79,20 @@ void make_text_valid(Atom& atom) {
 
 // mmCIF files written by other programs (PyMOL's 1bna.cif) may lack the columns gemmi's structure
 // reader needs (auth_seq_id); read the _atom_site table directly with gemmi's CIF parser.
-std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, gemmi::cif::Document& document,
-                                          int model, std::int64_t& models_in_file) {
+std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, gemmi::cif::Document& document, int model,
+                                          std::int64_t& models_in_file) {
   if (document.blocks.empty()) throw InputError(fmt::format("{}: the mmCIF file has no data block", path.string()));
   auto table = document.blocks.front().find(
       "_atom_site.", {"Cartn_x", "Cartn_y", "Cartn_z", "?group_PDB", "?id", "?type_symbol", "?label_atom_id",
                       "?label_alt_id", "?label_comp_id", "?auth_asym_id", "?label_asym_id", "?auth_seq_id",
                       "?label_seq_id", "?pdbx_PDB_ins_code", "?occupancy", "?pdbx_PDB_model_num", "?B_iso_or_equiv"});
-  if (table.length() == 0) throw InputError(fmt::format("{}: the file contains no atoms (no _atom_site table)", path.string()));
+  if (table.length() == 0)
+    throw InputError(fmt::format("{}: the file contains no atoms (no _atom_site table)", path.string()));
   std::vector<std::string> model_numbers;
   for (auto row : table) {
     const std::string number = row.has2(15) ? row.str(15) : "1";
-    if (std::find(model_numbers.begin(), model_numbers.end(), number) == model_numbers.end()) model_numbers.push_back(number);
+    if (std::find(model_numbers.begin(), model_numbers.end(), number) == model_numbers.end())
+      model_numbers.push_back(number);
   }
   models_in_file = static_cast<std::int64_t>(model_numbers.size());
   if (model < 1 || model > static_cast<int>(model_numbers.size()))
@@ -113,8 +115,8 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, gem
     raw.altloc = altloc.empty() ? 0 : altloc[0];
     raw.atom.residue_name = text(row, 8, "UNK");
     raw.atom.chain = row.has2(9) ? row.str(9) : text(row, 10, "");
-    raw.atom.residue_number = static_cast<std::int32_t>(
-        gemmi::cif::as_number(row.has2(11) ? row.str(11) : text(row, 12, "0"), 0));
+    raw.atom.residue_number =
+        static_cast<std::int32_t>(gemmi::cif::as_number(row.has2(11) ? row.str(11) : text(row, 12, "0"), 0));
     const std::string icode = text(row, 13, "");
     raw.atom.insertion_code = icode.empty() ? ' ' : icode[0];
     raw.occupancy = gemmi::cif::as_number(text(row, 14, "1"), 1);
@@ -133,7 +135,8 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, gem
 gemmi::Structure parse_with_gemmi(const std::filesystem::path& path, const std::string& text,
                                   std::optional<gemmi::cif::Document>& document) {
   const std::string extension = lower_extension(path);
-  if (extension == ".pdb" || extension == ".ent") return gemmi::read_pdb_from_memory(text.data(), text.size(), path.string());
+  if (extension == ".pdb" || extension == ".ent")
+    return gemmi::read_pdb_from_memory(text.data(), text.size(), path.string());
   document = gemmi::cif::read_memory(text.data(), text.size(), path.c_str());
   return gemmi::make_structure(*document);
 }
@@ -160,9 +163,10 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, const st
       }
     }
     if (!read)
-      throw InputError(fmt::format("{}: cannot read the structure: {}. Check that it is a PDB or mmCIF file and not "
-                                   "truncated",
-                                   path.string(), valid_utf8(first_error.what())));
+      throw InputError(
+          fmt::format("{}: cannot read the structure: {}. Check that it is a PDB or mmCIF file and not "
+                      "truncated",
+                      path.string(), valid_utf8(first_error.what())));
   }
   models_in_file = static_cast<std::int64_t>(structure.models.size());
   if (structure.models.empty() && document) return read_atom_site_table(path, *document, model, models_in_file);
@@ -178,7 +182,8 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, const st
   for (const auto& chain : chosen.chains) {
     for (const auto& residue : chain.residues) {
       const bool water = residue.is_water() || is_water_name(residue.name);
-      const std::string key = fmt::format("{}|{}|{}|{}", chain.name, residue.seqid.num.value, residue.seqid.icode, residue.name);
+      const std::string key =
+          fmt::format("{}|{}|{}|{}", chain.name, residue.seqid.num.value, residue.seqid.icode, residue.name);
       for (const auto& a : residue.atoms) {
         RawAtom raw;
         raw.atom.position = {a.pos.x, a.pos.y, a.pos.z};
@@ -219,9 +224,10 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path, const std::stri
     std::vector<std::string> fields;
     for (std::string field; stream >> field;) fields.push_back(field);
     auto fail = [&] {
-      return InputError(fmt::format("{}:{}: not a PQR atom record (expected 'ATOM serial name residue [chain] number x y "
-                                    "z charge radius'): {}",
-                                    path.string(), line_number, molecule_detail::quoted_line(line)));
+      return InputError(
+          fmt::format("{}:{}: not a PQR atom record (expected 'ATOM serial name residue [chain] number x y "
+                      "z charge radius'): {}",
+                      path.string(), line_number, molecule_detail::quoted_line(line)));
     };
     if (fields.size() < 10 || fields.size() > 12) throw fail();
     auto number = [&](const std::string& text) {
@@ -269,16 +275,18 @@ std::vector<RawAtom> read_raw_atoms(const std::filesystem::path& path, const Str
   const std::string extension = lower_extension(path);
   const bool pqr = extension == ".pqr";
   if (!pqr && extension != ".pdb" && extension != ".ent" && extension != ".cif" && extension != ".mmcif")
-    throw InputError(fmt::format("{}: unknown structure format '{}'; spheremap reads .pdb, .ent, .cif, .mmcif (also "
-                                 ".gz) and .pqr",
-                                 path.string(), extension));
+    throw InputError(
+        fmt::format("{}: unknown structure format '{}'; spheremap reads .pdb, .ent, .cif, .mmcif (also "
+                    ".gz) and .pqr",
+                    path.string(), extension));
   report.warnings = std::move(text.warnings);
   std::vector<RawAtom> raw;
   if (pqr) {
     raw = read_pqr(path, text.bytes);
     report.models_in_file = 1;
     if (options.model != 1)
-      throw InputError(fmt::format("{}: --model {} does not exist: PQR files hold one model", path.string(), options.model));
+      throw InputError(
+          fmt::format("{}: --model {} does not exist: PQR files hold one model", path.string(), options.model));
   } else {
     raw = read_with_gemmi(path, text.bytes, options.model, report.models_in_file, report.warnings);
   }
@@ -323,13 +331,14 @@ std::map<std::string, char> kept_alternate_locations(const std::vector<RawAtom>&
 }
 
 // Whether the options leave the atom out (counted in the report by why).
-bool filtered_out(const RawAtom& a, const StructureOptions& options, bool pqr,
-                  std::map<std::string, char>& kept_altloc, StructureReport& report) {
+bool filtered_out(const RawAtom& a, const StructureOptions& options, bool pqr, std::map<std::string, char>& kept_altloc,
+                  StructureReport& report) {
   if (a.altloc != 0 && a.altloc != ' ' && kept_altloc[a.residue_key] != a.altloc) {
     ++report.alternate_locations_removed;
     return true;
   }
-  if (!options.chains.empty() && std::find(options.chains.begin(), options.chains.end(), a.atom.chain) == options.chains.end()) {
+  if (!options.chains.empty() &&
+      std::find(options.chains.begin(), options.chains.end(), a.atom.chain) == options.chains.end()) {
     ++report.other_chains_removed;
     return true;
   }
@@ -352,9 +361,10 @@ bool filtered_out(const RawAtom& a, const StructureOptions& options, bool pqr,
 void require_real_position(const RawAtom& a, const std::filesystem::path& path) {
   for (double c : a.atom.position) {
     if (!std::isfinite(c) || std::abs(c) > kAbsurdCoordinate)
-      throw InputError(fmt::format("{}: atom {} ({} {}{}) has the coordinate {}, which is not a real position; fix "
-                                   "the file",
-                                   path.string(), a.atom.serial, a.atom.name, a.atom.residue_name, a.atom.residue_number, c));
+      throw InputError(
+          fmt::format("{}: atom {} ({} {}{}) has the coordinate {}, which is not a real position; fix "
+                      "the file",
+                      path.string(), a.atom.serial, a.atom.name, a.atom.residue_name, a.atom.residue_number, c));
   }
 }
 
@@ -415,11 +425,12 @@ Molecule read_structure(const std::filesystem::path& path, const StructureOption
                                  path.string(), fmt::join(report.warnings, "; "),
                                  report.warnings.size() == 1 ? "this warning" : "these warnings"));
   if (molecule.atoms.size() < 2)
-    throw InputError(fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
-                                 "at least two. Check --chains and --model, or keep more atoms (--keep-waters, "
-                                 "--keep-hydrogens{})",
-                                 path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
-                                 options.keep_hetero ? "" : ", without --no-hetero"));
+    throw InputError(
+        fmt::format("{}: {} atom(s) left after filtering (hydrogens, waters{}); a molecular surface needs "
+                    "at least two. Check --chains and --model, or keep more atoms (--keep-waters, "
+                    "--keep-hydrogens{})",
+                    path.string(), molecule.atoms.size(), options.keep_hetero ? "" : ", HETATM groups",
+                    options.keep_hetero ? "" : ", without --no-hetero"));
   return molecule;
 }
 

@@ -31,8 +31,8 @@ std::string read_bytes(const std::filesystem::path& path) {
   const auto close_file = [](std::FILE* stream) { std::fclose(stream); };
   std::unique_ptr<std::FILE, decltype(close_file)> stream(std::fopen(path.c_str(), "rb"), close_file);
   if (!stream)
-    throw InputError(fmt::format("{}: cannot open the file ({}); check that it is readable", path.string(),
-                                 std::strerror(errno)));
+    throw InputError(
+        fmt::format("{}: cannot open the file ({}); check that it is readable", path.string(), std::strerror(errno)));
   std::string bytes;
   constexpr std::size_t kChunk = std::size_t{1} << 20;
   std::size_t used = 0;
@@ -44,14 +44,14 @@ std::string read_bytes(const std::filesystem::path& path) {
   }
   bytes.resize(used);
   if (std::ferror(stream.get()))
-    throw InputError(fmt::format("{}: cannot read the file ({}); check the disk and the file", path.string(),
-                                 std::strerror(errno)));
+    throw InputError(
+        fmt::format("{}: cannot read the file ({}); check the disk and the file", path.string(), std::strerror(errno)));
   return bytes;
 }
 
 [[noreturn]] void gzip_fail(const std::filesystem::path& path, const std::string& problem) {
-  throw InputError(fmt::format("{}: {}; download or compress the file again (gzip -t checks a .gz file)",
-                               path.string(), problem));
+  throw InputError(
+      fmt::format("{}: {}; download or compress the file again (gzip -t checks a .gz file)", path.string(), problem));
 }
 
 // Inflates every gzip member of `compressed`. Bytes after the last member that do not start another
@@ -60,10 +60,11 @@ std::string inflate_gzip(const std::filesystem::path& path, const std::string& c
                          std::vector<std::string>& warnings) {
   if (compressed.size() < 2 || static_cast<unsigned char>(compressed[0]) != 0x1F ||
       static_cast<unsigned char>(compressed[1]) != 0x8B)
-    throw InputError(fmt::format("{}: the name ends in .gz but the file is not gzip-compressed (it does not start "
-                                 "with gzip's bytes 1F 8B); rename it without .gz if it is plain text, or compress "
-                                 "it with gzip",
-                                 path.string()));
+    throw InputError(
+        fmt::format("{}: the name ends in .gz but the file is not gzip-compressed (it does not start "
+                    "with gzip's bytes 1F 8B); rename it without .gz if it is plain text, or compress "
+                    "it with gzip",
+                    path.string()));
   z_stream z{};
   if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) throw std::runtime_error("zlib: inflateInit2 failed");
   const std::unique_ptr<z_stream, int (*)(z_stream*)> guard(&z, inflateEnd);
@@ -86,17 +87,18 @@ std::string inflate_gzip(const std::filesystem::path& path, const std::string& c
       out.resize(used + (kChunk - z.avail_out));
       offset += before_in - z.avail_in;
       if (status == Z_BUF_ERROR && offset >= compressed.size()) break;
-      if (status == Z_BUF_ERROR) status = Z_OK;  // output was full; go on
+      if (status == Z_BUF_ERROR) status = Z_OK;                                    // output was full; go on
       if (status == Z_OK && z.avail_in == 0 && offset < compressed.size()) break;  // refill the input
     }
     if (status == Z_OK && offset < compressed.size()) continue;
     if (status == Z_STREAM_END) {
       if (offset == compressed.size()) return out;
-      const bool next_member = compressed.size() - offset >= 2 && static_cast<unsigned char>(compressed[offset]) == 0x1F &&
+      const bool next_member = compressed.size() - offset >= 2 &&
+                               static_cast<unsigned char>(compressed[offset]) == 0x1F &&
                                static_cast<unsigned char>(compressed[offset + 1]) == 0x8B;
       if (!next_member) {
-        warnings.push_back(fmt::format("{} byte(s) after the end of the gzip data were ignored",
-                                       compressed.size() - offset));
+        warnings.push_back(
+            fmt::format("{} byte(s) after the end of the gzip data were ignored", compressed.size() - offset));
         return out;
       }
       inflateReset(&z);
@@ -111,9 +113,7 @@ std::string inflate_gzip(const std::filesystem::path& path, const std::string& c
   }
 }
 
-bool is_atom_record(std::string_view line) {
-  return line.rfind("ATOM", 0) == 0 || line.rfind("HETATM", 0) == 0;
-}
+bool is_atom_record(std::string_view line) { return line.rfind("ATOM", 0) == 0 || line.rfind("HETATM", 0) == 0; }
 
 std::string_view without_cr(std::string_view line) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -138,9 +138,10 @@ std::vector<std::string> truncation_warnings(const std::string& text) {
   const std::size_t start = last_start == std::string_view::npos || last_start >= body_end ? 0 : last_start + 1;
   const std::string_view last = without_cr(all.substr(start, body_end - start));
   if (all.back() != '\n')
-    warnings.push_back(fmt::format("the file does not end with a line break, so its last line may be cut short "
-                                   "(a truncated file?): {}",
-                                   quoted_line(std::string(last))));
+    warnings.push_back(
+        fmt::format("the file does not end with a line break, so its last line may be cut short "
+                    "(a truncated file?): {}",
+                    quoted_line(std::string(last))));
   if (!is_atom_record(last)) return warnings;
   // A cut record is shorter than every other atom record of the file (files that mix record lengths,
   // e.g. waters without an element column, keep their shortest records' length).
@@ -153,9 +154,10 @@ std::vector<std::string> truncation_warnings(const std::string& text) {
     at = end + 1;
   }
   if (records > 0 && last.size() < shortest)
-    warnings.push_back(fmt::format("the last atom record is shorter than the file's {} other ones ({} characters "
-                                   "instead of at least {}), so it may be cut short (a truncated file?): {}",
-                                   records, last.size(), shortest, quoted_line(std::string(last))));
+    warnings.push_back(
+        fmt::format("the last atom record is shorter than the file's {} other ones ({} characters "
+                    "instead of at least {}), so it may be cut short (a truncated file?): {}",
+                    records, last.size(), shortest, quoted_line(std::string(last))));
   return warnings;
 }
 
@@ -165,9 +167,10 @@ StructureText read_structure_text(const std::filesystem::path& path) {
   if (!std::filesystem::exists(status))
     throw InputError(fmt::format("{}: no such file; check the path", path.string()));
   if (std::filesystem::is_directory(status))
-    throw InputError(fmt::format("{}: this is a folder, not a structure file; give the path of a file (spheremap "
-                                 "batch maps every file of a folder)",
-                                 path.string()));
+    throw InputError(
+        fmt::format("{}: this is a folder, not a structure file; give the path of a file (spheremap "
+                    "batch maps every file of a folder)",
+                    path.string()));
   StructureText text;
   text.bytes = read_bytes(path);
   if (text.bytes.empty()) throw InputError(fmt::format("{}: the file is empty", path.string()));

@@ -15,10 +15,10 @@
 
 #include <fmt/format.h>
 
+#include "../util/stage_timer.hpp"
 #include "batch_manifest.hpp"
 #include "batch_worker.hpp"
 #include "detail.hpp"
-#include "../util/stage_timer.hpp"
 
 namespace spheremap {
 namespace {
@@ -87,7 +87,11 @@ class WorkerPool {
  public:
   WorkerPool(const fs::path& root, const std::vector<BatchInput>& inputs, const std::vector<std::size_t>& todo,
              const BatchOptions& options, const BatchLock& lock)
-      : root_(root), inputs_(inputs), todo_(todo), options_(options), lock_(lock),
+      : root_(root),
+        inputs_(inputs),
+        todo_(todo),
+        options_(options),
+        lock_(lock),
         worker_count_(std::min<std::size_t>(static_cast<std::size_t>(options.jobs), todo.size())) {}
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;

@@ -11,9 +11,9 @@
 
 #include <fmt/format.h>
 
+#include "detail.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/pipeline/molecular_surface.hpp"
-#include "detail.hpp"
 
 namespace spheremap {
 namespace {
@@ -28,9 +28,10 @@ void expand_argument(const std::string& argument, const fs::path& base, int dept
 
 void expand_list(const fs::path& list, int depth, std::vector<fs::path>& out) {
   if (depth >= kMaxListDepth)
-    throw InputError(fmt::format("{}: lists include lists more than {} levels deep (a list including itself?); "
-                                 "flatten the lists",
-                                 list.string(), kMaxListDepth));
+    throw InputError(
+        fmt::format("{}: lists include lists more than {} levels deep (a list including itself?); "
+                    "flatten the lists",
+                    list.string(), kMaxListDepth));
   const auto text = read_text(list);
   std::error_code ec;
   if (!text || fs::is_directory(list, ec))
@@ -68,8 +69,10 @@ void expand_path(const fs::path& path, int depth, std::vector<fs::path>& out) {
   if (fs::is_directory(status)) {
     expand_folder(path, out);
   } else if (fs::exists(status)) {
-    if (lower(path.extension().string()) == ".txt") expand_list(path, depth, out);
-    else out.push_back(path);
+    if (lower(path.extension().string()) == ".txt")
+      expand_list(path, depth, out);
+    else
+      out.push_back(path);
   } else if (has_glob_characters(path.string())) {
     glob_t matches{};
     const int found = ::glob(path.c_str(), GLOB_NOSORT, nullptr, &matches);
@@ -84,9 +87,12 @@ void expand_path(const fs::path& path, int depth, std::vector<fs::path>& out) {
     std::sort(names.begin(), names.end());
     for (const auto& name : names) {
       const fs::path match = name;
-      if (fs::is_directory(match, ec)) expand_folder(match, out);
-      else if (lower(match.extension().string()) == ".txt") expand_list(match, depth, out);
-      else out.push_back(match);
+      if (fs::is_directory(match, ec))
+        expand_folder(match, out);
+      else if (lower(match.extension().string()) == ".txt")
+        expand_list(match, depth, out);
+      else
+        out.push_back(match);
     }
   } else {
     out.push_back(path);
@@ -97,8 +103,10 @@ void expand_argument(const std::string& argument, const fs::path& base, int dept
   if (argument.empty()) return;
   fs::path path = argument[0] == '@' ? fs::path(argument.substr(1)) : fs::path(argument);
   if (path.is_relative()) path = base / path;
-  if (argument[0] == '@') expand_list(path, depth, out);
-  else expand_path(path, depth, out);
+  if (argument[0] == '@')
+    expand_list(path, depth, out);
+  else
+    expand_path(path, depth, out);
 }
 
 }  // namespace
@@ -128,9 +136,10 @@ std::vector<fs::path> expand_batch_inputs(const std::vector<std::string>& argume
   if (unique.empty()) {
     std::string given;
     for (const auto& argument : arguments) given += (given.empty() ? "" : " ") + argument;
-    throw InputError(fmt::format("no input files in '{}': folders give their .obj .off .ply .stl .pdb .ent .cif "
-                                 ".mmcif .pqr (.gz) files (not those of subfolders)",
-                                 given));
+    throw InputError(
+        fmt::format("no input files in '{}': folders give their .obj .off .ply .stl .pdb .ent .cif "
+                    ".mmcif .pqr (.gz) files (not those of subfolders)",
+                    given));
   }
   return unique;
 }

@@ -31,9 +31,10 @@ BatchLock::BatchLock(const fs::path& root) {
     ::close(descriptor_);
     descriptor_ = -1;
     if (error == EWOULDBLOCK)
-      throw InputError(fmt::format("{}: another spheremap batch is writing into this folder; wait for it to end, "
-                                   "or choose another -o folder",
-                                   root.string()));
+      throw InputError(
+          fmt::format("{}: another spheremap batch is writing into this folder; wait for it to end, "
+                      "or choose another -o folder",
+                      root.string()));
     throw InputError(fmt::format("{}: cannot lock the output folder ({})", root.string(), std::strerror(error)));
   }
 }

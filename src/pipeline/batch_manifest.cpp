@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "detail.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
-#include "detail.hpp"
 
 namespace spheremap {
 namespace {
@@ -35,11 +35,13 @@ std::string option_differences(const Json& now, const Json& before, const std::s
   for (const auto& [key, value] : now.items()) {
     const std::string name = prefix.empty() ? key : prefix + "." + key;
     const auto it = before.find(key);
-    if (it == before.end()) add(fmt::format("{} {} (not set before)", name, dump(value)));
+    if (it == before.end())
+      add(fmt::format("{} {} (not set before)", name, dump(value)));
     else if (value.is_object() && it->is_object()) {
       const auto inner = option_differences(value, *it, name);
       if (!inner.empty()) add(inner);
-    } else if (value != *it) add(fmt::format("{} {} (was {})", name, dump(value), dump(*it)));
+    } else if (value != *it)
+      add(fmt::format("{} {} (was {})", name, dump(value), dump(*it)));
   }
   for (const auto& [key, value] : before.items())
     if (now.find(key) == now.end())
@@ -113,9 +115,10 @@ bool check_batch_manifest(const fs::path& root, const BatchOptions& options) {
       differences = fmt::format("its batch.json is unreadable ({})", e.what());
     }
     if (!options.force)
-      throw InputError(fmt::format("{}: this folder holds a batch made with other options: {}. Use another -o folder, "
-                                   "or --force to redo every input with the new options",
-                                   root.string(), differences));
+      throw InputError(
+          fmt::format("{}: this folder holds a batch made with other options: {}. Use another -o folder, "
+                      "or --force to redo every input with the new options",
+                      root.string(), differences));
   }
   return true;
 }

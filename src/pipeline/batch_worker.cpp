@@ -12,8 +12,8 @@
 #include <csignal>
 #include <cstring>
 
-#include "detail.hpp"
 #include "../util/stage_timer.hpp"
+#include "detail.hpp"
 
 namespace spheremap::pipeline_detail {
 namespace {
@@ -120,8 +120,10 @@ BatchInputOutcome run_batch_input(const fs::path& root, const BatchInput& input,
   std::vector<std::size_t> pending;
   for (std::size_t k = 0; k < options.weights.size(); ++k)
     if (run_status(runs.folder(k)) == RunStatus::kPending) pending.push_back(k);
-  if (options.isolate) map_input_in_child(runs, pending, options, lock);
-  else map_input(runs, pending, options);
+  if (options.isolate)
+    map_input_in_child(runs, pending, options, lock);
+  else
+    map_input(runs, pending, options);
   for (std::size_t k = 0; k < options.weights.size(); ++k) {
     const RunFolder state = read_run_folder(runs.folder(k));
     outcome.statuses.push_back(state.status);

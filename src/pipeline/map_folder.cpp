@@ -137,8 +137,8 @@ MapFolder read_map_folder(const std::filesystem::path& folder) {
     throw InputError(fmt::format("{}: no such folder; {}", folder.string(), kFix));
   for (const char* file : {kSurfaceFile, kSphereFile, kReportFile})
     if (!std::filesystem::is_regular_file(folder / file, error))
-      throw InputError(fmt::format("{}: the folder has no {}, so it is not a finished map; {}", folder.string(), file,
-                                   kFix));
+      throw InputError(
+          fmt::format("{}: the folder has no {}, so it is not a finished map; {}", folder.string(), file, kFix));
   MapFolder map;
   map.folder = folder;
   map.surface = read_ply_mesh(folder / kSurfaceFile);

@@ -9,21 +9,21 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "../util/stage_timer.hpp"
 #include "detail.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/io/mesh_io.hpp"
+#include "spheremap/geometry/normals.hpp"
+#include "spheremap/geometry/vec.hpp"
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/io/gltf.hpp"
+#include "spheremap/io/mesh_io.hpp"
 #include "spheremap/io/ply.hpp"
-#include "spheremap/geometry/vec.hpp"
 #include "spheremap/pipeline/map_tables.hpp"
 #include "spheremap/pipeline/report.hpp"
-#include "spheremap/geometry/normals.hpp"
 #include "spheremap/properties/colour_scale.hpp"
-#include "spheremap/text.hpp"
 #include "spheremap/surface/provenance.hpp"
-#include "../util/stage_timer.hpp"
+#include "spheremap/text.hpp"
 
 namespace spheremap {
 namespace {
@@ -40,9 +40,10 @@ MapOptions map_options_for(const PreparedMesh& prepared, const MapJobOptions& op
       throw InputError(fmt::format("{}: --poles: vertex {} does not exist (the file has vertices 0 to {})", name,
                                    input_vertex, static_cast<std::int64_t>(of_input.size()) - 1));
     if (of_input[input_vertex] < 0)
-      throw InputError(fmt::format("{}: --poles: vertex {} is not part of the mapped surface (unused, or in another "
-                                   "component); choose another vertex",
-                                   name, input_vertex));
+      throw InputError(
+          fmt::format("{}: --poles: vertex {} is not part of the mapped surface (unused, or in another "
+                      "component); choose another vertex",
+                      name, input_vertex));
     return of_input[input_vertex];
   };
   const auto [north, south] = *map.poles;
@@ -98,8 +99,7 @@ std::string load_molecular_surface(const std::filesystem::path& input, const Map
   result.surface_timings = surface.timings;
   result.components = surface.reports;
   result.structure_atoms = surface.atoms;
-  if (surface.components.empty())
-    throw MeshRefused(fmt::format("{}: the molecular surface is empty", input.string()));
+  if (surface.components.empty()) throw MeshRefused(fmt::format("{}: the molecular surface is empty", input.string()));
   return fmt::format("{} (molecular surface, probe {} Å, grid {} Å)", valid_utf8(input.string()), options.surface.probe,
                      options.surface.grid);
 }
@@ -186,9 +186,10 @@ std::string load_and_prepare(const std::filesystem::path& input, const MapJobOpt
     if (options.prepare.component.mode == ComponentChoice::Mode::kNumbered) {
       chosen = static_cast<std::size_t>(options.prepare.component.number);
       if (chosen >= surface.components.size())
-        throw InputError(fmt::format("{}: --component {}: the molecular surface has {} component(s), numbered 0 to {} "
-                                     "by decreasing area",
-                                     name, chosen, surface.components.size(), surface.components.size() - 1));
+        throw InputError(
+            fmt::format("{}: --component {}: the molecular surface has {} component(s), numbered 0 to {} "
+                        "by decreasing area",
+                        name, chosen, surface.components.size(), surface.components.size() - 1));
     }
     return prepare_surface_component(surface, chosen, name, options, result, true);
   }
@@ -271,17 +272,19 @@ std::string structure_text(const MapJobResult& result) {
   for (const auto& c : result.components)
     cavities += c.kind == SurfaceComponentKind::kCavity, pieces += c.kind == SurfaceComponentKind::kPiece;
   const bool outer_mapped = result.components.empty() || result.components.front().mapped;
-  std::string text = fmt::format("  structure: {} atoms; molecular surface: outer surface, {} cavities, {} detached "
-                                 "pieces (in report.json); the {} is mapped\n",
-                                 result.atoms, cavities, pieces, outer_mapped ? "outer surface" : "chosen component");
+  std::string text = fmt::format(
+      "  structure: {} atoms; molecular surface: outer surface, {} cavities, {} detached "
+      "pieces (in report.json); the {} is mapped\n",
+      result.atoms, cavities, pieces, outer_mapped ? "outer surface" : "chosen component");
   const HandleRepairReport& t = result.topology;
   if (t.method != RepairMethod::kNone) {
     std::int64_t cuts = 0, fills = 0;
     for (const auto& c : t.closures) (c.kind == ClosureKind::kCut ? cuts : fills) += 1;
-    text += fmt::format("  handle repair ({}): genus {} -> 0, {} handle(s) cut, {} tunnel(s) filled ({} grid "
-                        "samples, {:.1f} Å³), outer area {:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
-                        to_string(t.method), t.genus_before, cuts, fills, t.samples_changed, t.volume_changed,
-                        t.area_before, t.area_after, 100 * (t.area_after / t.area_before - 1));
+    text += fmt::format(
+        "  handle repair ({}): genus {} -> 0, {} handle(s) cut, {} tunnel(s) filled ({} grid "
+        "samples, {:.1f} Å³), outer area {:.1f} -> {:.1f} Å² ({:+.2f}%)\n",
+        to_string(t.method), t.genus_before, cuts, fills, t.samples_changed, t.volume_changed, t.area_before,
+        t.area_after, 100 * (t.area_after / t.area_before - 1));
   }
   return text;
 }
@@ -300,11 +303,12 @@ std::string properties_text(const MapJobResult& result) {
 }
 
 std::string simplification_text(const SimplifyReport& r) {
-  return fmt::format("  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g}, smallest angle {:.1f}° -> "
-                     "{:.1f}°), area {:+.2f}%, every removed vertex within {:.3g} of the result\n",
-                     r.vertices_before, r.vertices_after, r.mean_edge_before, r.mean_edge_after,
-                     r.min_angle_before_degrees, r.min_angle_after_degrees,
-                     r.area_before > 0 ? 100 * (r.area_after / r.area_before - 1) : 0.0, r.max_vertex_distance);
+  return fmt::format(
+      "  simplified: {} -> {} vertices (mean edge {:.3g} -> {:.3g}, smallest angle {:.1f}° -> "
+      "{:.1f}°), area {:+.2f}%, every removed vertex within {:.3g} of the result\n",
+      r.vertices_before, r.vertices_after, r.mean_edge_before, r.mean_edge_after, r.min_angle_before_degrees,
+      r.min_angle_after_degrees, r.area_before > 0 ? 100 * (r.area_after / r.area_before - 1) : 0.0,
+      r.max_vertex_distance);
 }
 
 }  // namespace
@@ -326,10 +330,11 @@ std::string summary_text(const MapJobResult& result) {
                       to_string(map.diagnostics.construction.method), map.poles.north, map.poles.south,
                       map.poles.graph_distance, map.diagnostics.construction.split_edges.size(),
                       to_string(map.diagnostics.solve.solver));
-  text += fmt::format("  plain algorithm: {} folded, {} collapsed; repair: {} re-weighting rounds, {} untangling "
-                      "moves\n",
-                      repair.plain_certificate.folded, repair.plain_certificate.collapsed, repair.reweighting_rounds,
-                      repair.untangling_moves);
+  text += fmt::format(
+      "  plain algorithm: {} folded, {} collapsed; repair: {} re-weighting rounds, {} untangling "
+      "moves\n",
+      repair.plain_certificate.folded, repair.plain_certificate.collapsed, repair.reweighting_rounds,
+      repair.untangling_moves);
   if (map.diagnostics.fallback.ran) {
     const auto& e = map.diagnostics.fallback.embedding;
     text += fmt::format(
@@ -349,13 +354,14 @@ std::string summary_text(const MapJobResult& result) {
                         to_string(objective.objective), to_string(objective.energy), o.energy_before, o.energy_after,
                         o.iterations, to_string(o.stop_reason), outcome);
   }
-  text += fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
-                      c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage,
-                      c.decided_exactly);
-  text += fmt::format("  area distortion {:.1f}% mean ({:.0f}% max), angle distortion {:.1f}° mean ({:.1f}° RMS), "
-                      "dilatation {:.2f} mean, octant RMS {:.1f}%\n",
-                      m.area_distortion_mean_percent, m.area_distortion_max_percent, m.angle_distortion_mean_degrees,
-                      m.angle_distortion_rms_degrees, m.dilatation_mean, m.octant_rms_deviation_percent);
+  text +=
+      fmt::format("  certificate: {} — {} folded, {} collapsed, coverage {:.12f}, {} signs decided exactly\n",
+                  c.certified() ? "CERTIFIED" : "NOT CERTIFIED", c.folded, c.collapsed, c.coverage, c.decided_exactly);
+  text += fmt::format(
+      "  area distortion {:.1f}% mean ({:.0f}% max), angle distortion {:.1f}° mean ({:.1f}° RMS), "
+      "dilatation {:.2f} mean, octant RMS {:.1f}%\n",
+      m.area_distortion_mean_percent, m.area_distortion_max_percent, m.angle_distortion_mean_degrees,
+      m.angle_distortion_rms_degrees, m.dilatation_mean, m.octant_rms_deviation_percent);
   text += properties_text(result);
   text += fmt::format("  superposition RMSD {:.4g}; total {:.3f} s\n", map.superposition.rmsd, total_seconds);
   return text;
@@ -432,8 +438,8 @@ GlbMesh glb_mesh(const Mesh& ply, const std::vector<Vec3>& normals, const MapJob
 }  // namespace
 
 const std::vector<std::string>& map_output_names() {
-  static const std::vector<std::string> names = {kSurfaceFile, kSphereFile, kSurfaceGlbFile, kSphereGlbFile,
-                                                 kAtomsFile,   kResiduesFile, kReportFile,    kViewerFile};
+  static const std::vector<std::string> names = {kSurfaceFile, kSphereFile,   kSurfaceGlbFile, kSphereGlbFile,
+                                                 kAtomsFile,   kResiduesFile, kReportFile,     kViewerFile};
   return names;
 }
 

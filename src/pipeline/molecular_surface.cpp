@@ -10,14 +10,14 @@
 
 #include <fmt/format.h>
 
+#include "../util/stage_timer.hpp"
 #include "detail.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/surface/contour.hpp"
 #include "spheremap/repair/handle_repair.hpp"
+#include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/nearest_atoms.hpp"
 #include "spheremap/surface/provenance.hpp"
-#include "../util/stage_timer.hpp"
 
 namespace spheremap {
 
@@ -47,9 +47,10 @@ struct SolidAtoms {
 
 SolidAtoms solid_atoms(const std::vector<Atom>& atoms) {
   if (std::none_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.radius > 0; }))
-    throw InputError(fmt::format("none of the {} atom(s) has a positive radius: atoms of radius 0 carry charge but make "
-                                 "no surface",
-                                 atoms.size()));
+    throw InputError(
+        fmt::format("none of the {} atom(s) has a positive radius: atoms of radius 0 carry charge but make "
+                    "no surface",
+                    atoms.size()));
   SolidAtoms solid;
   if (std::all_of(atoms.begin(), atoms.end(), [](const Atom& a) { return a.radius > 0; })) return solid;
   for (std::size_t a = 0; a < atoms.size(); ++a) {
@@ -155,7 +156,7 @@ std::vector<SurfaceComponentReport> describe_components(const Mesh& mesh, const 
   for (std::size_t c = 0; c < components.size(); ++c) {
     const auto& component = components[c];
     SurfaceComponentReport report;
-    report.kind = c == 0                          ? SurfaceComponentKind::kOuter
+    report.kind = c == 0                        ? SurfaceComponentKind::kOuter
                   : component.signed_volume < 0 ? SurfaceComponentKind::kCavity
                                                 : SurfaceComponentKind::kPiece;
     report.vertices = component.vertices;

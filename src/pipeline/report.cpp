@@ -115,19 +115,19 @@ std::string method_name(ElectrostaticsMethod method) {
 }
 
 nlohmann::json electrostatics_json(const ElectrostaticsDetails& e, const std::vector<std::string>& warnings) {
-  nlohmann::json block = {{"method", method_name(e.method)},
-                          {"charges", e.charges.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.charges)},
-                          {"force_field", e.force_field ? nlohmann::json(to_string(*e.force_field)) : nullptr},
-                          {"temperature", e.temperature},
-                          {"offset", e.offset},
-                          {"dielectric", e.dielectric.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.dielectric)},
-                          {"potential_map", e.potential_map.empty() ? nlohmann::json(nullptr)
-                                                                    : nlohmann::json(e.potential_map.string())},
-                          {"net_charge", e.net_charge ? nlohmann::json(*e.net_charge) : nullptr},
-                          {"atoms_charged", e.atoms_charged},
-                          {"atoms_unmatched", e.atoms_unmatched},
-                          {"added_atoms", e.added_atoms},
-                          {"added_hydrogens", e.added_hydrogens}};
+  nlohmann::json block = {
+      {"method", method_name(e.method)},
+      {"charges", e.charges.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.charges)},
+      {"force_field", e.force_field ? nlohmann::json(to_string(*e.force_field)) : nullptr},
+      {"temperature", e.temperature},
+      {"offset", e.offset},
+      {"dielectric", e.dielectric.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.dielectric)},
+      {"potential_map", e.potential_map.empty() ? nlohmann::json(nullptr) : nlohmann::json(e.potential_map.string())},
+      {"net_charge", e.net_charge ? nlohmann::json(*e.net_charge) : nullptr},
+      {"atoms_charged", e.atoms_charged},
+      {"atoms_unmatched", e.atoms_unmatched},
+      {"added_atoms", e.added_atoms},
+      {"added_hydrogens", e.added_hydrogens}};
   nlohmann::json list = nlohmann::json::array();
   for (const auto& w : warnings)
     if (w.rfind("electrostatics: ", 0) == 0) list.push_back(w.substr(16));
@@ -151,14 +151,14 @@ nlohmann::json properties_json(const MapJobResult& result) {
     }
     nlohmann::json range = nullptr;
     if (finite > 0) range = {{"min", lo}, {"max", hi}, {"mean", sum / static_cast<double>(finite)}};
-    nlohmann::json entry = {{"source", p.source},
-                            {"unit", p.info.unit},
-                            {"scale", std::string(to_string(p.info.scale))},
-                            {"default_range", p.info.default_range ? nlohmann::json{p.info.default_range->lo,
-                                                                                   p.info.default_range->hi}
-                                                                   : nlohmann::json(nullptr)},
-                            {"range", range},
-                            {"missing", missing}};
+    nlohmann::json entry = {
+        {"source", p.source},
+        {"unit", p.info.unit},
+        {"scale", std::string(to_string(p.info.scale))},
+        {"default_range", p.info.default_range ? nlohmann::json{p.info.default_range->lo, p.info.default_range->hi}
+                                               : nlohmann::json(nullptr)},
+        {"range", range},
+        {"missing", missing}};
     if (!p.info.categories.empty()) entry["categories"] = p.info.categories;
     if (p.info.name == property_names::kElectrostatics && report.electrostatics)
       entry["electrostatics"] = electrostatics_json(*report.electrostatics, report.warnings);
@@ -279,30 +279,30 @@ nlohmann::json map_json(const SphereMap& map) {
     splits.push_back({{"a", s.a}, {"b", s.b}, {"ring", std::string(1, s.pole)}});
   const auto& r = map.superposition.rotation;
   nlohmann::json json = {{"method", to_string(construction.method)},
-                        {"refinement_levels", construction.refinement_levels},
-                        {"north_pole", map.poles.north},
-                        {"south_pole", map.poles.south},
-                        {"pole_graph_distance", map.poles.graph_distance},
-                        {"theta0", construction.theta0},
-                        {"mercator_c", construction.mercator_c},
-                        {"ring_z", construction.ring_z},
-                        {"north_ring_size", construction.north_ring_size},
-                        {"south_ring_size", construction.south_ring_size},
-                        {"split_edges", splits},
-                        {"meridian_length", construction.meridian.size()},
-                        {"meridian_method", to_string(construction.meridian_method)},
-                        {"meridian_round", construction.meridian_round},
-                        {"solver", to_string(solve.solver)},
-                        {"elimination_order", to_string(solve.elimination_order)},
-                        {"gauss_seidel_sweeps", solve.gauss_seidel_sweeps},
-                        {"gauss_seidel_converged", solve.gauss_seidel_converged},
-                        {"weight_fallback_rows", solve.weight_fallback_rows},
-                        {"reweighting_rounds", repair.reweighting_rounds},
-                        {"equalizing_rounds", repair.equalizing_rounds},
-                        {"untangling_moves", repair.untangling_moves},
-                        {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
-                        {"superposition_rmsd", map.superposition.rmsd},
-                        {"superposition_scale", map.superposition.scale}};
+                         {"refinement_levels", construction.refinement_levels},
+                         {"north_pole", map.poles.north},
+                         {"south_pole", map.poles.south},
+                         {"pole_graph_distance", map.poles.graph_distance},
+                         {"theta0", construction.theta0},
+                         {"mercator_c", construction.mercator_c},
+                         {"ring_z", construction.ring_z},
+                         {"north_ring_size", construction.north_ring_size},
+                         {"south_ring_size", construction.south_ring_size},
+                         {"split_edges", splits},
+                         {"meridian_length", construction.meridian.size()},
+                         {"meridian_method", to_string(construction.meridian_method)},
+                         {"meridian_round", construction.meridian_round},
+                         {"solver", to_string(solve.solver)},
+                         {"elimination_order", to_string(solve.elimination_order)},
+                         {"gauss_seidel_sweeps", solve.gauss_seidel_sweeps},
+                         {"gauss_seidel_converged", solve.gauss_seidel_converged},
+                         {"weight_fallback_rows", solve.weight_fallback_rows},
+                         {"reweighting_rounds", repair.reweighting_rounds},
+                         {"equalizing_rounds", repair.equalizing_rounds},
+                         {"untangling_moves", repair.untangling_moves},
+                         {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
+                         {"superposition_rmsd", map.superposition.rmsd},
+                         {"superposition_scale", map.superposition.scale}};
   // Only maps that needed the fallback carry its report: every other report stays as it was.
   if (map.diagnostics.fallback.ran) json["fallback"] = fallback_json(map.diagnostics.fallback);
   if (map.diagnostics.objective.objective != MapObjective::kPaper)
@@ -359,9 +359,10 @@ class ReportFields {
     for (const char* key : keys) {
       path += path.empty() ? key : std::string(".") + key;
       if (!node->is_object() || !node->contains(key))
-        throw InputError(fmt::format("{}: field '{}' is missing; this is not a report.json of spheremap map (or of an "
-                                     "older version): map the input again",
-                                     source_.string(), path));
+        throw InputError(
+            fmt::format("{}: field '{}' is missing; this is not a report.json of spheremap map (or of an "
+                        "older version): map the input again",
+                        source_.string(), path));
       node = &(*node)[key];
     }
     return *node;
@@ -481,9 +482,10 @@ DistortionMetrics read_distortion(const ReportFields& f) {
   d.dilatation_max = f.number({"distortion", "dilatation_max"});
   const auto& octants = f.array({"distortion", "octant_area_percent"});
   if (octants.size() != d.octant_area_percent.size())
-    throw InputError(fmt::format("{}: field 'distortion.octant_area_percent' has {} values instead of {}; map the "
-                                 "input again",
-                                 f.source().string(), octants.size(), d.octant_area_percent.size()));
+    throw InputError(
+        fmt::format("{}: field 'distortion.octant_area_percent' has {} values instead of {}; map the "
+                    "input again",
+                    f.source().string(), octants.size(), d.octant_area_percent.size()));
   for (std::size_t k = 0; k < octants.size(); ++k) {
     if (!octants[k].is_number()) f.wrong_type({"distortion", "octant_area_percent"}, octants[k]);
     d.octant_area_percent[k] = octants[k].get<double>();

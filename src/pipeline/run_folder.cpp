@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
+#include "detail.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
-#include "detail.hpp"
 
 namespace spheremap {
 namespace {

@@ -7,12 +7,12 @@
 
 #include <fmt/format.h>
 
+#include "detail.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/pipeline/report.hpp"
 #include "spheremap/pipeline/run_folder.hpp"
 #include "spheremap/text.hpp"
-#include "detail.hpp"
 
 namespace spheremap {
 namespace {
@@ -31,10 +31,16 @@ void put(Json& row, std::initializer_list<std::pair<const char*, Json>> columns)
 
 void set_structure_columns(Json& row, const ReportStructure& s) {
   const ReportTopologyRepair& t = s.topology_repair;
-  put(row, {{"atoms", s.atoms}, {"probe", number(s.probe)}, {"grid", number(s.grid)},
-            {"handles_cut", t.handles_cut}, {"tunnels_filled", t.tunnels_filled}, {"repair_method", t.method},
-            {"repair_rounds", t.rounds}, {"repair_samples_changed", t.samples_changed},
-            {"repair_volume_changed", number(t.volume_changed)}, {"repair_area_before", number(t.area_before)},
+  put(row, {{"atoms", s.atoms},
+            {"probe", number(s.probe)},
+            {"grid", number(s.grid)},
+            {"handles_cut", t.handles_cut},
+            {"tunnels_filled", t.tunnels_filled},
+            {"repair_method", t.method},
+            {"repair_rounds", t.rounds},
+            {"repair_samples_changed", t.samples_changed},
+            {"repair_volume_changed", number(t.volume_changed)},
+            {"repair_area_before", number(t.area_before)},
             {"repair_area_after", number(t.area_after)},
             {"repair_area_changed_percent", number(t.area_changed_percent)}});
 }
@@ -54,15 +60,18 @@ void set_distortion_columns(Json& row, const DistortionMetrics& d) {
             {"angle_distortion_mean_degrees", number(d.angle_distortion_mean_degrees)},
             {"angle_distortion_rms_degrees", number(d.angle_distortion_rms_degrees)},
             {"angle_distortion_max_degrees", number(d.angle_distortion_max_degrees)},
-            {"dilatation_mean", number(d.dilatation_mean)}, {"dilatation_max", number(d.dilatation_max)},
+            {"dilatation_mean", number(d.dilatation_mean)},
+            {"dilatation_max", number(d.dilatation_max)},
             {"octant_rms_deviation_percent", number(d.octant_rms_deviation_percent)}});
   for (int k = 0; k < kOctants; ++k)
     row[fmt::format("octant_area_percent_{}", k)] = number(d.octant_area_percent[static_cast<std::size_t>(k)]);
 }
 
 // Stages of their own column; every other timing is a part of the map.
-constexpr const char* kStageColumns[][2] = {{"read", "seconds_read"},       {"surface", "seconds_surface"},
-                                            {"simplify", "seconds_simplify"}, {"prepare", "seconds_prepare"},
+constexpr const char* kStageColumns[][2] = {{"read", "seconds_read"},
+                                            {"surface", "seconds_surface"},
+                                            {"simplify", "seconds_simplify"},
+                                            {"prepare", "seconds_prepare"},
                                             {"metrics", "seconds_metrics"}};
 
 void set_timing_columns(Json& row, const std::vector<StageTime>& timings) {
@@ -84,16 +93,26 @@ void set_report_columns(Json& row, const ReportSummary& r) {
   // Meshes are never repaired: their genus is the mesh's. Structures: the outer surface before the
   // handle repair.
   const std::int64_t genus_before = r.structure ? r.structure->topology_repair.genus_before : r.genus;
-  put(row, {{"vertices", r.vertices}, {"triangles", r.triangles}, {"input_vertices", r.input_vertices},
-            {"input_faces", r.input_faces}, {"components", r.components}, {"genus_before_repair", genus_before}});
+  put(row, {{"vertices", r.vertices},
+            {"triangles", r.triangles},
+            {"input_vertices", r.input_vertices},
+            {"input_faces", r.input_faces},
+            {"components", r.components},
+            {"genus_before_repair", genus_before}});
   if (const auto& s = r.simplification)
-    put(row, {{"simplified_vertices_before", s->vertices_before}, {"simplified_area_before", number(s->area_before)},
+    put(row, {{"simplified_vertices_before", s->vertices_before},
+              {"simplified_area_before", number(s->area_before)},
               {"simplified_area_after", number(s->area_after)},
               {"simplified_max_vertex_distance", number(s->max_vertex_distance)}});
-  put(row, {{"map_method", r.map_method}, {"north_pole", r.north_pole}, {"south_pole", r.south_pole},
-            {"pole_graph_distance", r.pole_graph_distance}, {"solver", r.solver},
-            {"reweighting_rounds", r.reweighting_rounds}, {"untangling_moves", r.untangling_moves},
-            {"superposition_rmsd", number(r.superposition_rmsd)}, {"split_edges", r.split_edges},
+  put(row, {{"map_method", r.map_method},
+            {"north_pole", r.north_pole},
+            {"south_pole", r.south_pole},
+            {"pole_graph_distance", r.pole_graph_distance},
+            {"solver", r.solver},
+            {"reweighting_rounds", r.reweighting_rounds},
+            {"untangling_moves", r.untangling_moves},
+            {"superposition_rmsd", number(r.superposition_rmsd)},
+            {"split_edges", r.split_edges},
             {"decided_exactly", r.certificate.decided_exactly}});
   set_certificate_columns(row, "", r.certificate);
   set_certificate_columns(row, "plain_", r.plain_certificate);
@@ -107,9 +126,9 @@ void set_report_columns(Json& row, const ReportSummary& r) {
 std::string csv_field(const Json& value) {
   if (value.is_null()) return {};
   std::string text = value.is_string() ? valid_utf8(value.get<std::string>()) : dump(value);
-  const bool quote = text.find_first_of(",\"\r\n") != std::string::npos ||
-                     (!text.empty() && (text.front() == ' ' || text.back() == ' ' || text.front() == '\t' ||
-                                        text.back() == '\t'));
+  const bool quote =
+      text.find_first_of(",\"\r\n") != std::string::npos ||
+      (!text.empty() && (text.front() == ' ' || text.back() == ' ' || text.front() == '\t' || text.back() == '\t'));
   if (!quote) return text;
   std::string quoted = "\"";
   for (const char c : text) {
@@ -123,22 +142,65 @@ std::string csv_field(const Json& value) {
 
 const std::vector<std::string>& summary_columns() {
   static const std::vector<std::string> columns = [] {
-    std::vector<std::string> c = {
-        "input", "output", "weights", "status", "exit_code", "message", "atoms", "probe", "grid", "vertices",
-        "triangles", "input_vertices", "input_faces", "components", "genus_before_repair", "handles_cut",
-        "tunnels_filled", "repair_method", "repair_rounds", "repair_samples_changed", "repair_volume_changed",
-        "repair_area_before", "repair_area_after", "repair_area_changed_percent", "simplified_vertices_before",
-        "simplified_area_before", "simplified_area_after", "simplified_max_vertex_distance", "map_method",
-        "north_pole", "south_pole", "pole_graph_distance", "solver", "reweighting_rounds", "untangling_moves",
-        "superposition_rmsd", "certified", "folded", "collapsed", "coverage", "min_area_ratio", "decided_exactly",
-        "plain_certified", "plain_folded", "plain_collapsed", "plain_coverage", "plain_min_area_ratio",
-        "area_distortion_mean_percent", "area_distortion_max_percent", "area_log_ratio_mean",
-        "angle_distortion_mean_degrees", "angle_distortion_rms_degrees", "angle_distortion_max_degrees",
-        "dilatation_mean", "dilatation_max"};
+    std::vector<std::string> c = {"input",
+                                  "output",
+                                  "weights",
+                                  "status",
+                                  "exit_code",
+                                  "message",
+                                  "atoms",
+                                  "probe",
+                                  "grid",
+                                  "vertices",
+                                  "triangles",
+                                  "input_vertices",
+                                  "input_faces",
+                                  "components",
+                                  "genus_before_repair",
+                                  "handles_cut",
+                                  "tunnels_filled",
+                                  "repair_method",
+                                  "repair_rounds",
+                                  "repair_samples_changed",
+                                  "repair_volume_changed",
+                                  "repair_area_before",
+                                  "repair_area_after",
+                                  "repair_area_changed_percent",
+                                  "simplified_vertices_before",
+                                  "simplified_area_before",
+                                  "simplified_area_after",
+                                  "simplified_max_vertex_distance",
+                                  "map_method",
+                                  "north_pole",
+                                  "south_pole",
+                                  "pole_graph_distance",
+                                  "solver",
+                                  "reweighting_rounds",
+                                  "untangling_moves",
+                                  "superposition_rmsd",
+                                  "certified",
+                                  "folded",
+                                  "collapsed",
+                                  "coverage",
+                                  "min_area_ratio",
+                                  "decided_exactly",
+                                  "plain_certified",
+                                  "plain_folded",
+                                  "plain_collapsed",
+                                  "plain_coverage",
+                                  "plain_min_area_ratio",
+                                  "area_distortion_mean_percent",
+                                  "area_distortion_max_percent",
+                                  "area_log_ratio_mean",
+                                  "angle_distortion_mean_degrees",
+                                  "angle_distortion_rms_degrees",
+                                  "angle_distortion_max_degrees",
+                                  "dilatation_mean",
+                                  "dilatation_max"};
     for (int k = 0; k < kOctants; ++k) c.push_back(fmt::format("octant_area_percent_{}", k));
     for (const char* column : {"octant_rms_deviation_percent", "split_edges", "seconds_read", "seconds_surface",
-                               "seconds_simplify", "seconds_prepare", "seconds_map", "seconds_metrics",
-                               "seconds_total", "peak_rss_mb", "properties", "electrostatics_source"})
+                               "seconds_simplify", "seconds_prepare", "seconds_map", "seconds_metrics", "seconds_total",
+                               "peak_rss_mb", "properties", "electrostatics_source"})
       c.emplace_back(column);
     return c;
   }();
@@ -162,8 +224,8 @@ Json summary_row(const BatchInput& input, Weights weights, const fs::path& root,
   const ReportSummary& r = *state.report;
   std::vector<std::string> message;
   if (state.status == RunStatus::kNotCertified)
-    message.push_back(fmt::format("NOT certified: {} folded, {} collapsed triangles, coverage {}",
-                                  r.certificate.folded, r.certificate.collapsed, dump(number(r.certificate.coverage))));
+    message.push_back(fmt::format("NOT certified: {} folded, {} collapsed triangles, coverage {}", r.certificate.folded,
+                                  r.certificate.collapsed, dump(number(r.certificate.coverage))));
   if (r.structure)
     for (const auto& warning : r.structure->warnings) message.push_back("warning: " + valid_utf8(warning));
   if (!message.empty()) row["message"] = fmt::format("{}", fmt::join(message, "; "));
@@ -216,8 +278,10 @@ int batch_exit_code(const std::vector<Json>& rows) {
   std::set<int> codes;
   for (const auto& row : rows) {
     const auto status = row.value("status", std::string());
-    if (status == "pending") codes.insert(4);
-    else if (status == "not-certified") codes.insert(static_cast<int>(ExitCode::kNotCertified));
+    if (status == "pending")
+      codes.insert(4);
+    else if (status == "not-certified")
+      codes.insert(static_cast<int>(ExitCode::kNotCertified));
     else if (status == "error") {
       const auto& code = row.at("exit_code");
       codes.insert(code.is_number_integer() ? code.get<int>() : 4);

@@ -85,8 +85,9 @@ ChargeAssignment match_pqr_charges(const std::vector<Atom>& atoms, const std::ve
     std::set<std::string> names;
     for (std::size_t i = 0; i < atoms.size(); ++i)
       if (!result.atom_matched[i]) names.insert(atoms[i].residue_name);
-    result.warnings.push_back(fmt::format("{} of {} atoms (of the residues {}) have no charge in {} and count as neutral",
-                                          result.atoms_unmatched, atoms.size(), fmt::join(names, ", "), source));
+    result.warnings.push_back(
+        fmt::format("{} of {} atoms (of the residues {}) have no charge in {} and count as neutral",
+                    result.atoms_unmatched, atoms.size(), fmt::join(names, ", "), source));
   }
   if (result.pqr_atoms_unused > 0)
     result.warnings.push_back(
@@ -110,9 +111,10 @@ void fill_unmatched_with_formal(ChargeAssignment& charges, const std::vector<Ato
   charges.net_charge = 0;
   for (const double q : charges.points.charges) charges.net_charge += q;
   if (!residues.empty())
-    charges.warnings.push_back(fmt::format("of the atoms without a charge in {}, those of {} took their formal charge "
-                                           "instead ({:+g} e in all)",
-                                           charges.source, fmt::join(residues, ", "), added));
+    charges.warnings.push_back(
+        fmt::format("of the atoms without a charge in {}, those of {} took their formal charge "
+                    "instead ({:+g} e in all)",
+                    charges.source, fmt::join(residues, ", "), added));
 }
 
 ChargeAssignment read_pqr_charges(const std::vector<Atom>& atoms, const std::filesystem::path& pqr) {

@@ -5,9 +5,9 @@
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <fontconfig/fontconfig.h>
+#include <ft2build.h>
 #include <png.h>
 #include <zlib.h>
-#include <ft2build.h>
 #include FT_FREETYPE_H
 
 #include <algorithm>
@@ -100,8 +100,7 @@ std::string renumber_svg_ids(const std::string& svg) {
   for (std::sregex_iterator it(svg.begin(), svg.end(), id), end; it != end; ++it) {
     const std::smatch& m = *it;
     out.append(last, m[0].first);
-    const auto [found, inserted] =
-        numbers.try_emplace(m[2].str() + m[3].str(), static_cast<int>(numbers.size()) + 1);
+    const auto [found, inserted] = numbers.try_emplace(m[2].str() + m[3].str(), static_cast<int>(numbers.size()) + 1);
     out += m[1].str() + m[2].str() + "-" + std::to_string(found->second);
     last = m[0].second;
   }

@@ -67,10 +67,10 @@ struct ColourKey {
   std::string title;  // e.g. "electrostatics (kT/e)"
   ScaleKind scale = ScaleKind::sequential;
   ValueRange range;
-  std::vector<std::string> categories;     // categorical: the name of each class shown
-  std::vector<int> classes;                // categorical: the classes present, in order
+  std::vector<std::string> categories;            // categorical: the name of each class shown
+  std::vector<int> classes;                       // categorical: the classes present, in order
   bool below_range = false, above_range = false;  // some values saturate at either end
-  bool missing = false;                    // some vertices have no value (grey)
+  bool missing = false;                           // some vertices have no value (grey)
 };
 
 /// The key of `property` with colour range `range`, from the values it has.

@@ -66,8 +66,8 @@ void draw_colour_bar(cairo_t* cr, const ColourKey& key, double x, double y, doub
   const ColourTable& table = colour_table(key.scale);
   fill_bar(cr, table, left, top, bar_width, bar_height);
   if (key.below_range) draw_extension(cr, left - bar_height * 0.9, left, top, bar_height, table.front());
-  if (key.above_range) draw_extension(cr, left + bar_width + bar_height * 0.9, left + bar_width, top, bar_height,
-                                      table.back());
+  if (key.above_range)
+    draw_extension(cr, left + bar_width + bar_height * 0.9, left + bar_width, top, bar_height, table.back());
   cairo_rectangle(cr, left, top, bar_width, bar_height);
   set_colour(cr, kFrame);
   cairo_set_line_width(cr, 1);
@@ -149,7 +149,10 @@ ColourKey colour_key(const SurfaceProperty& property, const ValueRange& range) {
       key.missing = true;
     } else if (key.scale == ScaleKind::categorical) {
       const int k = colour_index(ScaleKind::categorical, range, v);
-      if (k < 0) key.missing = true; else classes.insert(k);
+      if (k < 0)
+        key.missing = true;
+      else
+        classes.insert(k);
     } else {
       key.below_range = key.below_range || v < range.lo;
       key.above_range = key.above_range || v > range.hi;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <stdexcept>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 #include "spheremap/attributes.hpp"
@@ -54,8 +54,10 @@ void add_residues(const Mesh& surface, Globe& globe) {
 }
 
 SurfaceProperty octant_property(const std::vector<Vec3>& sphere) {
-  SurfaceProperty p{{"octant", "", ScaleKind::categorical, std::nullopt, {octant_names().begin(), octant_names().end()}},
-                    "globe position", {}};
+  SurfaceProperty p{
+      {"octant", "", ScaleKind::categorical, std::nullopt, {octant_names().begin(), octant_names().end()}},
+      "globe position",
+      {}};
   p.values.reserve(sphere.size());
   // A zero coordinate counts as +, as in the octant metrics.
   for (const Vec3& s : sphere) p.values.push_back((s[0] < 0) + 2 * (s[1] < 0) + 4 * (s[2] < 0));
@@ -74,9 +76,8 @@ SurfaceProperty chain_property(const Mesh& surface, const TextAttribute& chain) 
   std::vector<std::int32_t> order;  // codes present, by first atom
   for (std::size_t c = 0; c < first_atom.size(); ++c)
     if (first_atom[c] != std::numeric_limits<std::int32_t>::max()) order.push_back(static_cast<std::int32_t>(c));
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-    return std::tie(first_atom[a], a) < std::tie(first_atom[b], b);
-  });
+  std::sort(order.begin(), order.end(),
+            [&](std::int32_t a, std::int32_t b) { return std::tie(first_atom[a], a) < std::tie(first_atom[b], b); });
   std::vector<double> class_of(chain.dictionary.size(), kNaN);
   for (std::size_t k = 0; k < order.size(); ++k) {
     class_of[order[k]] = static_cast<double>(k);
@@ -91,17 +92,17 @@ SurfaceProperty chain_property(const Mesh& surface, const TextAttribute& chain) 
 // ions and waters are not in the sequence.
 bool polymer_residue(const std::string& name) {
   static const std::set<std::string> names{
-      "ALA", "ARG", "ASN", "ASP", "CYS", "GLN", "GLU", "GLY", "HIS", "ILE", "LEU", "LYS", "MET", "PHE", "PRO",
-      "SER", "THR", "TRP", "TYR", "VAL", "MSE", "SEC", "PYL", "HID", "HIE", "HIP", "HSD", "HSE", "HSP", "CYX",
-      "CYM", "ASH", "GLH", "LYN", "ARN", "TYM", "A",   "C",   "G",   "U",   "I",   "DA",  "DC",  "DG",  "DT",
-      "DI"};
+      "ALA", "ARG", "ASN", "ASP", "CYS", "GLN", "GLU", "GLY", "HIS", "ILE", "LEU", "LYS", "MET", "PHE", "PRO", "SER",
+      "THR", "TRP", "TYR", "VAL", "MSE", "SEC", "PYL", "HID", "HIE", "HIP", "HSD", "HSE", "HSP", "CYX", "CYM", "ASH",
+      "GLH", "LYN", "ARN", "TYM", "A",   "C",   "G",   "U",   "I",   "DA",  "DC",  "DG",  "DT",  "DI"};
   return names.count(name) > 0;
 }
 
 // Polymer residues of each chain ranked by (number, insertion code), 0 for the first, 1 for the last; NaN for
 // ligands, ions and waters.
 SurfaceProperty sequence_property(const Globe& globe) {
-  SurfaceProperty p{{"sequence_position", "", ScaleKind::spectrum, ValueRange{0, 1}, {}}, "residue order on the surface", {}};
+  SurfaceProperty p{
+      {"sequence_position", "", ScaleKind::spectrum, ValueRange{0, 1}, {}}, "residue order on the surface", {}};
   std::vector<double> position(globe.residues.size(), kNaN);
   // globe.residues is sorted by chain, then number and insertion code: each chain is one run.
   for (std::size_t first = 0; first < globe.residues.size();) {
@@ -111,7 +112,8 @@ SurfaceProperty sequence_property(const Globe& globe) {
     for (std::size_t r = first; r <= last; ++r)
       if (polymer_residue(globe.residues[r].name)) polymer.push_back(r);
     for (std::size_t k = 0; k < polymer.size(); ++k)
-      position[polymer[k]] = polymer.size() > 1 ? static_cast<double>(k) / static_cast<double>(polymer.size() - 1) : 0.0;
+      position[polymer[k]] =
+          polymer.size() > 1 ? static_cast<double>(k) / static_cast<double>(polymer.size() - 1) : 0.0;
     first = last + 1;
   }
   p.values.reserve(globe.vertex_residue.size());

@@ -99,12 +99,13 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
             const std::int32_t t = buffer.triangle[static_cast<std::size_t>(sy) * sw + sx];
             if (t < 0) continue;
             const Triangle& tri = globe.triangles[t];
-            std::array<double, 3> w = render_detail::screen_weights(screen[tri[0]], screen[tri[1]], screen[tri[2]], sx, sy);
+            std::array<double, 3> w =
+                render_detail::screen_weights(screen[tri[0]], screen[tri[1]], screen[tri[2]], sx, sy);
             for (double& wk : w) wk = std::max(wk, 0.0);
             const double total = w[0] + w[1] + w[2];
             for (double& wk : w) wk = total > 0 ? wk / total : 1.0 / 3;
-            const double value = value_at(globe, property, t,
-                                          {static_cast<float>(w[0]), static_cast<float>(w[1]), static_cast<float>(w[2])});
+            const double value = value_at(
+                globe, property, t, {static_cast<float>(w[0]), static_cast<float>(w[1]), static_cast<float>(w[2])});
             const Rgb8 colour = colour_of(property.info.scale, range, value);
             const double shade = w[0] * light[tri[0]] + w[1] * light[tri[1]] + w[2] * light[tri[2]];
             r += colour.r * shade, g += colour.g * shade, b += colour.b * shade, covered += 1;
@@ -112,7 +113,9 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
         if (covered == 0) continue;
         // Premultiplied ARGB: coverage is the alpha, so edges blend with the white page.
         const double samples = static_cast<double>(ss) * ss;
-        const auto byte = [&](double v) { return static_cast<std::uint32_t>(std::lround(std::clamp(v / samples, 0.0, 255.0))); };
+        const auto byte = [&](double v) {
+          return static_cast<std::uint32_t>(std::lround(std::clamp(v / samples, 0.0, 255.0)));
+        };
         const auto alpha = static_cast<std::uint32_t>(std::lround(covered / samples * 255));
         pixels[static_cast<std::size_t>(y) * width + x] = (alpha << 24) | (byte(r) << 16) | (byte(g) << 8) | byte(b);
       }
@@ -135,10 +138,11 @@ void draw_trace(cairo_t* cr, const std::vector<TracePath>& trace, const SurfaceP
       const Vec3 a = view(sub(path.points[k], centre)), b = view(sub(path.points[k + 1], centre));
       const double mid = (path.values[k] + path.values[k + 1]) / 2;
       segments.push_back({(a[2] + b[2]) / 2,
-                           {cx + a[0] * scale, cy - a[1] * scale, cx + b[0] * scale, cy - b[1] * scale},
-                           colour_of(property.info.scale, range, mid)});
+                          {cx + a[0] * scale, cy - a[1] * scale, cx + b[0] * scale, cy - b[1] * scale},
+                          colour_of(property.info.scale, range, mid)});
     }
-  std::stable_sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) { return a.depth < b.depth; });
+  std::stable_sort(segments.begin(), segments.end(),
+                   [](const Segment& a, const Segment& b) { return a.depth < b.depth; });
   const double width = std::max(2.0, panel.width / 75);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   for (const Segment& s : segments) {
@@ -204,12 +208,12 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
   const auto panel_at = [&](double column, double row, std::string label) {
     const double x = margin + column * cell_w + (cell_w - side) / 2;
     const double y = top + row * cell_h + label_space;
-    return PanelRect{std::round(x), std::round(y), static_cast<double>(side), static_cast<double>(side), std::move(label)};
+    return PanelRect{std::round(x), std::round(y), static_cast<double>(side), static_cast<double>(side),
+                     std::move(label)};
   };
   const double first = with_trace ? 1 : 0;
-  const std::vector<PanelRect> panels{
-      panel_at(first, 0, "surface, front"), panel_at(first + 1, 0, "surface, back"),
-      panel_at(first, 1, "globe, front"), panel_at(first + 1, 1, "globe, back")};
+  const std::vector<PanelRect> panels{panel_at(first, 0, "surface, front"), panel_at(first + 1, 0, "surface, back"),
+                                      panel_at(first, 1, "globe, front"), panel_at(first + 1, 1, "globe, back")};
 
   // The surface fills its panel at the same scale in both views; the globe (radius 1) likewise.
   double radius = 0;
@@ -262,8 +266,8 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
                              Align::left, {60, 60, 60});
   }
   render_detail::set_font(cr, title_size, true);
-  render_detail::draw_text(cr, w / 2, margin + title_size, fmt::format("{} · {} · surface and globe", globe.name,
-                                                                        property.info.name), Align::centre);
+  render_detail::draw_text(cr, w / 2, margin + title_size,
+                           fmt::format("{} · {} · surface and globe", globe.name, property.info.name), Align::centre);
   render_detail::set_font(cr, font_size * 0.9);
   render_detail::draw_text(cr, w / 2, margin + 1.5 * title_size + 0.45 * font_size,
                            "front: along the surface's axis of least spread; back: turned 180° about the vertical",

@@ -20,7 +20,8 @@ PointLocation locate_point(const Globe& globe, const SphereLocator& locator, con
     for (const std::int32_t v : t)
       if (globe.vertex_residue[v] >= 0) at.corner_residues.push_back(globe.vertex_residue[v]);
     std::sort(at.corner_residues.begin(), at.corner_residues.end());
-    at.corner_residues.erase(std::unique(at.corner_residues.begin(), at.corner_residues.end()), at.corner_residues.end());
+    at.corner_residues.erase(std::unique(at.corner_residues.begin(), at.corner_residues.end()),
+                             at.corner_residues.end());
   }
   const std::array<float, 3> weights{static_cast<float>(at.hit.weights[0]), static_cast<float>(at.hit.weights[1]),
                                      static_cast<float>(at.hit.weights[2])};

@@ -132,10 +132,10 @@ void draw_graticule_labels(cairo_t* cr, const ToFigure& to, const MapLayout& l) 
   for (int latitude = -60; latitude <= 60; latitude += 30) {
     const auto [x, y] = to(latitude, -180);
     const auto [x_right, y_right] = to(latitude, 180);
-    render_detail::draw_text(cr, x - 0.5 * l.font_size, y + 0.35 * l.font_size, latitude_label(latitude),
-                             Align::right, ink);
-    render_detail::draw_text(cr, x_right + 0.5 * l.font_size, y_right + 0.35 * l.font_size,
-                             latitude_label(latitude), Align::left, ink);
+    render_detail::draw_text(cr, x - 0.5 * l.font_size, y + 0.35 * l.font_size, latitude_label(latitude), Align::right,
+                             ink);
+    render_detail::draw_text(cr, x_right + 0.5 * l.font_size, y_right + 0.35 * l.font_size, latitude_label(latitude),
+                             Align::left, ink);
   }
   // Longitudes under the map, where each meridian crosses the equator.
   for (int longitude = -180; longitude <= 180; longitude += 30) {

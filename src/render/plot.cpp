@@ -182,7 +182,8 @@ void fill_rect(RgbImage& image, int x0, int y0, int x1, int y1, const Color& col
   y1 = std::min(y1, image.height);
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
-      const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)) * 3;
+      const auto i =
+          (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)) * 3;
       image.pixels[i] = color[0];
       image.pixels[i + 1] = color[1];
       image.pixels[i + 2] = color[2];
@@ -198,7 +199,8 @@ void draw_text(RgbImage& image, int x, int top, const std::string& text, int sca
       if (g.rows[row] == nullptr) continue;
       for (int col = 0; col < kGlyphWidth; ++col)
         if (g.rows[row][col] == '#')
-          fill_rect(image, pen + col * scale, top + row * scale, pen + (col + 1) * scale, top + (row + 1) * scale, color);
+          fill_rect(image, pen + col * scale, top + row * scale, pen + (col + 1) * scale, top + (row + 1) * scale,
+                    color);
     }
     pen += kGlyphAdvance * scale;
   }
@@ -267,14 +269,16 @@ int bitmap_text_width(const std::string& text, int scale) {
 BarChartLayout lay_out_bar_chart(const BarChart& chart, const PlotSize& size) {
   if (chart.values.empty()) throw std::invalid_argument("bar chart: no bars");
   if (chart.values.size() != chart.categories.size())
-    throw std::invalid_argument(fmt::format("bar chart: {} values but {} category labels", chart.values.size(),
-                                            chart.categories.size()));
+    throw std::invalid_argument(
+        fmt::format("bar chart: {} values but {} category labels", chart.values.size(), chart.categories.size()));
   if (size.width < 240 || size.height < 180 || size.width > 8000 || size.height > 8000)
-    throw std::invalid_argument(fmt::format("bar chart: canvas {} x {} outside 240 x 180 to 8000 x 8000", size.width, size.height));
+    throw std::invalid_argument(
+        fmt::format("bar chart: canvas {} x {} outside 240 x 180 to 8000 x 8000", size.width, size.height));
   double largest = 0;
   bool whole = true;
   for (const double v : chart.values) {
-    if (!std::isfinite(v) || v < 0) throw std::invalid_argument(fmt::format("bar chart: bar value {} is not finite and >= 0", v));
+    if (!std::isfinite(v) || v < 0)
+      throw std::invalid_argument(fmt::format("bar chart: bar value {} is not finite and >= 0", v));
     largest = std::max(largest, v);
     whole = whole && v == std::floor(v);
   }
@@ -297,7 +301,8 @@ BarChartLayout lay_out_bar_chart(const BarChart& chart, const PlotSize& size) {
   layout.plot_top = kMargin + title_lines * kLineHeight + (title_lines > 0 ? kLineHeight / 2 : 0);
   layout.plot_left = kMargin + (chart.y_label.empty() ? 0 : kLineHeight + 4) + widest_tick + kTickLength + 6;
   layout.plot_right = size.width - kMargin - 10;
-  layout.plot_bottom = size.height - kMargin - (chart.x_label.empty() ? 0 : kLineHeight + 4) - kLineHeight - kTickLength - 4;
+  layout.plot_bottom =
+      size.height - kMargin - (chart.x_label.empty() ? 0 : kLineHeight + 4) - kLineHeight - kTickLength - 4;
   if (layout.plot_right - layout.plot_left < 40 || layout.plot_bottom - layout.plot_top < 40)
     throw std::invalid_argument("bar chart: canvas too small for the text");
 
@@ -313,7 +318,8 @@ BarChartLayout lay_out_bar_chart(const BarChart& chart, const PlotSize& size) {
     bar.x0 = layout.plot_left + static_cast<int>(std::lround(i * slot + gap / 2));
     bar.x1 = std::max(bar.x0 + 1, layout.plot_left + static_cast<int>(std::lround((i + 1) * slot - gap / 2)));
     bar.y1 = layout.plot_bottom;
-    bar.y0 = layout.plot_bottom - static_cast<int>(std::lround(chart.values[static_cast<std::size_t>(i)] / top_value * plot_height));
+    bar.y0 = layout.plot_bottom -
+             static_cast<int>(std::lround(chart.values[static_cast<std::size_t>(i)] / top_value * plot_height));
     layout.bars.push_back(bar);
   }
   int widest_label = 0;
@@ -341,41 +347,47 @@ std::string bar_chart_svg(const BarChart& chart, const PlotSize& size) {
   for (std::size_t k = 0; k < l.y_ticks.size(); ++k) {
     const int row = l.y_tick_rows[k];
     if (k > 0)
-      svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>\n", l.plot_left, row, l.plot_right,
-                         row, hex(kGrid));
-    svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>\n", l.plot_left - kTickLength, row,
-                       l.plot_left, row, hex(kPlotInk));
+      svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>\n", l.plot_left, row,
+                         l.plot_right, row, hex(kGrid));
+    svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>\n", l.plot_left - kTickLength,
+                       row, l.plot_left, row, hex(kPlotInk));
     svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", l.plot_left - kTickLength - 4,
                        row + kCapHeight / 2, xml_escape(l.y_tick_labels[k]));
   }
   for (std::size_t i = 0; i < l.bars.size(); ++i) {
     const auto& b = l.bars[i];
     if (b.y1 > b.y0)
-      svg += fmt::format("<rect class=\"bar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" stroke=\"{}\">"
-                         "<title>{}: {}</title></rect>\n",
-                         b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0, hex(kPlotBarFill), hex(kBarEdge),
-                         xml_escape(chart.categories[i]), chart.values[i]);
+      svg += fmt::format(
+          "<rect class=\"bar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" stroke=\"{}\">"
+          "<title>{}: {}</title></rect>\n",
+          b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0, hex(kPlotBarFill), hex(kBarEdge), xml_escape(chart.categories[i]),
+          chart.values[i]);
     else
-      svg += fmt::format("<rect class=\"bar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"0\" fill=\"{}\"><title>{}: {}</title></rect>\n",
-                         b.x0, b.y0, b.x1 - b.x0, hex(kPlotBarFill), xml_escape(chart.categories[i]), chart.values[i]);
+      svg += fmt::format(
+          "<rect class=\"bar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"0\" fill=\"{}\"><title>{}: {}</title></rect>\n",
+          b.x0, b.y0, b.x1 - b.x0, hex(kPlotBarFill), xml_escape(chart.categories[i]), chart.values[i]);
     const int centre = (b.x0 + b.x1) / 2;
     svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{3}\"/>\n", centre, l.plot_bottom,
-                       l.plot_bottom + kTickLength / (i % static_cast<std::size_t>(l.label_every) == 0 ? 1 : 2), hex(kPlotInk));
+                       l.plot_bottom + kTickLength / (i % static_cast<std::size_t>(l.label_every) == 0 ? 1 : 2),
+                       hex(kPlotInk));
     if (i % static_cast<std::size_t>(l.label_every) == 0)
       svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", centre,
                          l.plot_bottom + kTickLength + 4 + kCapHeight, xml_escape(chart.categories[i]));
   }
-  svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{4}\"/>\n"
-                     "<line x1=\"{0}\" y1=\"{2}\" x2=\"{3}\" y2=\"{2}\" stroke=\"{4}\"/>\n",
-                     l.plot_left, l.plot_top, l.plot_bottom, l.plot_right, hex(kPlotInk));
+  svg += fmt::format(
+      "<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{4}\"/>\n"
+      "<line x1=\"{0}\" y1=\"{2}\" x2=\"{3}\" y2=\"{2}\" stroke=\"{4}\"/>\n",
+      l.plot_left, l.plot_top, l.plot_bottom, l.plot_right, hex(kPlotInk));
   if (!chart.x_label.empty())
     svg += fmt::format("<text class=\"x-label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
                        (l.plot_left + l.plot_right) / 2, size.height - kMargin - kLineHeight + kCapHeight,
                        xml_escape(chart.x_label));
   if (!chart.y_label.empty()) {
     const int x = kMargin + kCapHeight, y = (l.plot_top + l.plot_bottom) / 2;
-    svg += fmt::format("<text class=\"y-label\" x=\"{0}\" y=\"{1}\" text-anchor=\"middle\" transform=\"rotate(-90 {0} {1})\">{2}</text>\n",
-                       x, y, xml_escape(chart.y_label));
+    svg += fmt::format(
+        "<text class=\"y-label\" x=\"{0}\" y=\"{1}\" text-anchor=\"middle\" transform=\"rotate(-90 {0} "
+        "{1})\">{2}</text>\n",
+        x, y, xml_escape(chart.y_label));
   }
   svg += "</svg>\n";
   return svg;
@@ -410,18 +422,19 @@ RgbImage render_bar_chart(const BarChart& chart, const PlotSize& size) {
     }
     const bool labelled = i % static_cast<std::size_t>(l.label_every) == 0;
     const int centre = (b.x0 + b.x1) / 2;
-    fill_rect(image, centre, l.plot_bottom, centre + 1, l.plot_bottom + (labelled ? kTickLength : kTickLength / 2), kPlotInk);
+    fill_rect(image, centre, l.plot_bottom, centre + 1, l.plot_bottom + (labelled ? kTickLength : kTickLength / 2),
+              kPlotInk);
     if (labelled) {
       const int w = bitmap_text_width(chart.categories[i], kTextScale);
       draw_text(image, centre - w / 2, l.plot_bottom + kTickLength + 4, chart.categories[i], kTextScale, kPlotInk);
     }
   }
-  fill_rect(image, l.plot_left - 1, l.plot_top, l.plot_left, l.plot_bottom + 1, kPlotInk);   // y axis
+  fill_rect(image, l.plot_left - 1, l.plot_top, l.plot_left, l.plot_bottom + 1, kPlotInk);      // y axis
   fill_rect(image, l.plot_left - 1, l.plot_bottom, l.plot_right, l.plot_bottom + 1, kPlotInk);  // x axis
   if (!chart.x_label.empty()) {
     const int w = bitmap_text_width(chart.x_label, kTextScale);
-    draw_text(image, (l.plot_left + l.plot_right - w) / 2, size.height - kMargin - kLineHeight, chart.x_label, kTextScale,
-              kPlotInk);
+    draw_text(image, (l.plot_left + l.plot_right - w) / 2, size.height - kMargin - kLineHeight, chart.x_label,
+              kTextScale, kPlotInk);
   }
   if (!chart.y_label.empty()) {
     const int w = bitmap_text_width(chart.y_label, kTextScale);
@@ -434,8 +447,8 @@ std::string encode_png(const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0)
     throw std::invalid_argument(fmt::format("encode_png: image size {} x {}", image.width, image.height));
   if (image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
-    throw std::invalid_argument(fmt::format("encode_png: {} bytes for a {} x {} RGB image", image.pixels.size(),
-                                            image.width, image.height));
+    throw std::invalid_argument(
+        fmt::format("encode_png: {} bytes for a {} x {} RGB image", image.pixels.size(), image.width, image.height));
   png_image png;
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;

@@ -31,9 +31,10 @@ bool take_residue(std::string_view& text, std::int32_t& number, std::string& ins
 
 ResidueRange parse_item(std::string_view item, std::string_view whole) {
   const auto fail = [&](const std::string& why) -> ResidueRange {
-    throw InputError(fmt::format("residue selection '{}': item '{}' {}; write CHAIN:NUMBER or CHAIN:FIRST-LAST, "
-                                 "items separated by commas (e.g. A:45-60,B:12)",
-                                 whole, item, why));
+    throw InputError(
+        fmt::format("residue selection '{}': item '{}' {}; write CHAIN:NUMBER or CHAIN:FIRST-LAST, "
+                    "items separated by commas (e.g. A:45-60,B:12)",
+                    whole, item, why));
   };
   const auto colon = item.find(':');
   if (colon == std::string_view::npos || colon == 0) return fail("has no chain before ':'");
@@ -62,8 +63,11 @@ std::vector<ResidueRange> parse_residue_selection(std::string_view text) {
   while (start <= text.size()) {
     const auto comma = std::min(text.find(',', start), text.size());
     const std::string_view item = text.substr(start, comma - start);
-    if (item.empty()) throw InputError(fmt::format("residue selection '{}': an empty item (two commas, or a comma "
-                                                   "at an end); write e.g. A:45-60,B:12", text));
+    if (item.empty())
+      throw InputError(
+          fmt::format("residue selection '{}': an empty item (two commas, or a comma "
+                      "at an end); write e.g. A:45-60,B:12",
+                      text));
     ranges.push_back(parse_item(item, text));
     start = comma + 1;
   }
@@ -71,7 +75,8 @@ std::vector<ResidueRange> parse_residue_selection(std::string_view text) {
 }
 
 bool in_range(const ResidueLabel& r, const ResidueRange& range) {
-  return r.chain == range.chain && std::tie(range.first, range.first_insertion) <= std::tie(r.number, r.insertion_code) &&
+  return r.chain == range.chain &&
+         std::tie(range.first, range.first_insertion) <= std::tie(r.number, r.insertion_code) &&
          std::tie(r.number, r.insertion_code) <= std::tie(range.last, range.last_insertion);
 }
 
@@ -91,9 +96,10 @@ std::vector<std::int32_t> select_residues(const Globe& globe, const std::vector<
       const std::string item = single ? fmt::format("{}:{}{}", range.chain, range.first, range.first_insertion)
                                       : fmt::format("{}:{}{}-{}{}", range.chain, range.first, range.first_insertion,
                                                     range.last, range.last_insertion);
-      throw InputError(fmt::format("{}: no residue {} is on the mapped surface (chains there: {}); buried residues "
-                                   "have no place on the map",
-                                   option, item, fmt::join(chains, ", ")));
+      throw InputError(
+          fmt::format("{}: no residue {} is on the mapped surface (chains there: {}); buried residues "
+                      "have no place on the map",
+                      option, item, fmt::join(chains, ", ")));
     }
   }
   std::sort(selected.begin(), selected.end());

@@ -42,8 +42,8 @@ void add_atoms(const Mesh& surface, ViewerData& data) {
 }
 
 ViewerProperty octant_property(const std::vector<Vec3>& sphere) {
-  ViewerProperty p{"octant", "", ScaleKind::categorical, {0, 255}, {},
-                   {"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z", "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"}};
+  ViewerProperty p{"octant", "", ScaleKind::categorical,
+                   {0, 255}, {}, {"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z", "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"}};
   p.values.reserve(sphere.size());
   // A zero coordinate counts as +, as in the octant metrics.
   for (const Vec3& s : sphere) p.values.push_back(static_cast<float>((s[0] < 0) + 2 * (s[1] < 0) + 4 * (s[2] < 0)));
@@ -108,7 +108,7 @@ ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sph
     p.values.assign(property.values.begin(), property.values.end());
     p.range = property.info.scale == ScaleKind::categorical ? ValueRange{0, 255}
               : property.info.default_range                 ? *property.info.default_range
-                                                             : data_range(property.info.scale, p.values);
+                                                            : data_range(property.info.scale, p.values);
     data.properties.push_back(std::move(p));
   }
   return data;

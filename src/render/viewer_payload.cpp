@@ -113,26 +113,26 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
   for (std::size_t i = 0; i < data.properties.size(); ++i)
     properties.push_back(pack_property(out, data.properties[i], i));
 
-  const Json manifest{{"format", "spheremap-viewer"},
-                      {"version", 1},
-                      {"title", valid_utf8(data.title)},
-                      {"vertex_count", n},
-                      {"triangle_count", data.triangles.size()},
-                      {"atom_count", data.atoms.size()},
-                      {"missing_colour",
-                       Json::array({kMissingValueColour.r, kMissingValueColour.g, kMissingValueColour.b})},
-                      {"properties", properties},
-                      {"strings", strings.strings()},
-                      {"arrays", arrays}};
+  const Json manifest{
+      {"format", "spheremap-viewer"},
+      {"version", 1},
+      {"title", valid_utf8(data.title)},
+      {"vertex_count", n},
+      {"triangle_count", data.triangles.size()},
+      {"atom_count", data.atoms.size()},
+      {"missing_colour", Json::array({kMissingValueColour.r, kMissingValueColour.g, kMissingValueColour.b})},
+      {"properties", properties},
+      {"strings", strings.strings()},
+      {"arrays", arrays}};
   return {manifest.dump(), out.take()};
 }
 
 std::string deflate_zlib(const std::string& bytes) {
   uLongf size = compressBound(static_cast<uLong>(bytes.size()));
   std::string out(size, '\0');
-  const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size,
-                               reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uLong>(bytes.size()),
-                               Z_DEFAULT_COMPRESSION);
+  const int status =
+      compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(bytes.data()),
+                static_cast<uLong>(bytes.size()), Z_DEFAULT_COMPRESSION);
   if (status != Z_OK)
     throw std::runtime_error("zlib could not compress the viewer's data (status " + std::to_string(status) + ")");
   out.resize(size);

@@ -60,9 +60,10 @@ std::vector<fs::path> find_files_named(const fs::path& runs_dir, const std::stri
   std::error_code error;
   const auto status = fs::status(runs_dir, error);
   if (!fs::exists(status))
-    throw InputError(fmt::format("{}: the folder does not exist; give the output folder of spheremap batch (or a "
-                                 "folder holding outputs of spheremap map)",
-                                 runs_dir.string()));
+    throw InputError(
+        fmt::format("{}: the folder does not exist; give the output folder of spheremap batch (or a "
+                    "folder holding outputs of spheremap map)",
+                    runs_dir.string()));
   if (!fs::is_directory(status))
     throw InputError(fmt::format("{}: not a folder; give the output folder of spheremap batch", runs_dir.string()));
   std::vector<fs::path> found;
@@ -143,9 +144,8 @@ std::vector<std::string> duplicate_runs(const std::vector<ReportSummary>& report
   std::vector<std::string> out;
   for (const auto& [key, reports] : seen)
     if (reports.size() > 1)
-      out.push_back(fmt::format("{} appears {} times under weights {} ({}): each counts as a surface",
-                                key.second, reports.size(), key.first.substr(key.first.find(':') + 1),
-                                fmt::join(reports, ", ")));
+      out.push_back(fmt::format("{} appears {} times under weights {} ({}): each counts as a surface", key.second,
+                                reports.size(), key.first.substr(key.first.find(':') + 1), fmt::join(reports, ", ")));
   return out;
 }
 
@@ -163,29 +163,31 @@ std::vector<std::string> protocol_order(const std::vector<ProtocolSummary>& summ
 }
 
 std::string paper_row(const PaperRow& p) {
-  return fmt::format("| {} | Rahi & Sharp | 77 | 3,000–6,000 | {} ({:.0f}%) | – | {:.0f}% ({:.0f}%) | {:.1f}° "
-                     "({:.1f}°) | {:.1f}% |\n",
-                     protocol_title(p.weights), with_thousands(p.inverted), p.percent_correct, p.area_mean_percent,
-                     p.area_max_percent, p.angle_mean_degrees, p.angle_max_degrees, p.octant_rms_percent);
+  return fmt::format(
+      "| {} | Rahi & Sharp | 77 | 3,000–6,000 | {} ({:.0f}%) | – | {:.0f}% ({:.0f}%) | {:.1f}° "
+      "({:.1f}°) | {:.1f}% |\n",
+      protocol_title(p.weights), with_thousands(p.inverted), p.percent_correct, p.area_mean_percent, p.area_max_percent,
+      p.angle_mean_degrees, p.angle_max_degrees, p.octant_rms_percent);
 }
 
 std::string our_row(const ProtocolSummary& s) {
-  return fmt::format("| {} | **spheremap** | {} | {}–{} | {} ({}) | {} ({}) | {:.0f}% ({:.0f}%) | {:.1f}° "
-                     "({:.1f}°) | {:.1f}% |\n",
-                     protocol_title(s.weights), s.surfaces, with_thousands(s.triangles_min),
-                     with_thousands(s.triangles_max), with_thousands(s.plain_folded_total),
-                     percent_of(s.plain_surfaces_without_folds, s.surfaces), with_thousands(s.folded_total),
-                     percent_of(s.surfaces_certified, s.surfaces), s.area_mean_of_means_percent,
-                     s.area_max_of_means_percent, s.angle_mean_of_rms_degrees, s.angle_max_of_rms_degrees,
-                     s.octant_rms_pooled_percent);
+  return fmt::format(
+      "| {} | **spheremap** | {} | {}–{} | {} ({}) | {} ({}) | {:.0f}% ({:.0f}%) | {:.1f}° "
+      "({:.1f}°) | {:.1f}% |\n",
+      protocol_title(s.weights), s.surfaces, with_thousands(s.triangles_min), with_thousands(s.triangles_max),
+      with_thousands(s.plain_folded_total), percent_of(s.plain_surfaces_without_folds, s.surfaces),
+      with_thousands(s.folded_total), percent_of(s.surfaces_certified, s.surfaces), s.area_mean_of_means_percent,
+      s.area_max_of_means_percent, s.angle_mean_of_rms_degrees, s.angle_max_of_rms_degrees,
+      s.octant_rms_pooled_percent);
 }
 
 std::string table1_section(const std::vector<ProtocolSummary>& summaries) {
   std::string md = "## Table 1\n\n";
-  md += "| Mapping protocol | Source | Surfaces | Triangles per surface | # inverted triangles, plain algorithm "
-        "(% surfaces correct) <sup>a</sup> | # inverted triangles, final map (% surfaces certified) <sup>b</sup> | "
-        "Triangle area distortion, mean (max) <sup>c</sup> | Triangle angle distortion, mean (max) <sup>d</sup> | "
-        "RMS deviation in octant area from ideal of 12.5% <sup>e</sup> |\n";
+  md +=
+      "| Mapping protocol | Source | Surfaces | Triangles per surface | # inverted triangles, plain algorithm "
+      "(% surfaces correct) <sup>a</sup> | # inverted triangles, final map (% surfaces certified) <sup>b</sup> | "
+      "Triangle area distortion, mean (max) <sup>c</sup> | Triangle angle distortion, mean (max) <sup>d</sup> | "
+      "RMS deviation in octant area from ideal of 12.5% <sup>e</sup> |\n";
   md += "|---|---|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& weights : protocol_order(summaries)) {
     for (const auto& p : paper_table1())
@@ -198,49 +200,58 @@ std::string table1_section(const std::vector<ProtocolSummary>& summaries) {
 
 std::string footnotes() {
   std::string md;
-  md += "How each column is computed (our reading of the paper, whose Table 1 gives no formulas; its rows are "
-        "copied verbatim, its 77 surfaces had 3,000–6,000 triangles each):\n\n";
-  md += "- <sup>a</sup> **Plain algorithm**: `plain_algorithm_certificate` of each report, i.e. the paper's "
-        "algorithm without spheremap's repair — the figure comparable with the paper's. Inverted = folded "
-        "triangles (orientation of the three image points ≤ 0, decided exactly), summed over the surfaces; "
-        "% correct = share of surfaces with none.\n";
-  md += "- <sup>b</sup> **Final map**: `certificate` of each report, after re-weighting and untangling (unless "
-        "the run used `--no-repair`). Certified = no folded triangle, no collapsed triangle and coverage 1; "
-        "collapsed counts are in the details below.\n";
-  md += "- <sup>c</sup> **Area distortion**: per triangle |r − 1| with r = (solid angle / 4π) / (surface area / "
-        "total area); per surface the mean over its triangles (`area_distortion_mean_percent`); **mean** = mean "
-        "over the surfaces, **(max)** = largest per-surface mean. The paper's text (\"the average area "
-        "distortion is about 100%, with a maximum triangle area distortion of about fourfold\") also allows "
-        "(max) = mean over surfaces of each surface's worst triangle: that figure, and the worst triangle of "
-        "all, are in the details.\n";
-  md += "- <sup>d</sup> **Angle distortion**: per triangle corner |angle on the sphere − angle on the surface|; "
-        "per surface the RMS over its corners (`angle_distortion_rms_degrees`: the paper's text calls its figure "
-        "\"the root mean square change in angle ... 25°\" and \"a rms angle distortion of 10.6° (Table 1)\"); "
-        "**mean** = mean over surfaces, **(max)** = largest per-surface RMS. (Max) cannot be a maximum over "
-        "corners, which is far above the paper's 29.3°.\n";
-  md += "- <sup>e</sup> **Octant area**: per surface, the % of the surface area whose image (triangle centroid "
-        "direction, after superposition) lies in each octant of the sphere; the column is the RMS of (octant % − "
-        "12.5) over all 8 × surfaces octants pooled (\"most octants have area 12.5 ± 5%\").\n";
-  md += "- Distortion columns describe the final map; where repair changed nothing they are those of the plain "
-        "algorithm's map.\n\n";
+  md +=
+      "How each column is computed (our reading of the paper, whose Table 1 gives no formulas; its rows are "
+      "copied verbatim, its 77 surfaces had 3,000–6,000 triangles each):\n\n";
+  md +=
+      "- <sup>a</sup> **Plain algorithm**: `plain_algorithm_certificate` of each report, i.e. the paper's "
+      "algorithm without spheremap's repair — the figure comparable with the paper's. Inverted = folded "
+      "triangles (orientation of the three image points ≤ 0, decided exactly), summed over the surfaces; "
+      "% correct = share of surfaces with none.\n";
+  md +=
+      "- <sup>b</sup> **Final map**: `certificate` of each report, after re-weighting and untangling (unless "
+      "the run used `--no-repair`). Certified = no folded triangle, no collapsed triangle and coverage 1; "
+      "collapsed counts are in the details below.\n";
+  md +=
+      "- <sup>c</sup> **Area distortion**: per triangle |r − 1| with r = (solid angle / 4π) / (surface area / "
+      "total area); per surface the mean over its triangles (`area_distortion_mean_percent`); **mean** = mean "
+      "over the surfaces, **(max)** = largest per-surface mean. The paper's text (\"the average area "
+      "distortion is about 100%, with a maximum triangle area distortion of about fourfold\") also allows "
+      "(max) = mean over surfaces of each surface's worst triangle: that figure, and the worst triangle of "
+      "all, are in the details.\n";
+  md +=
+      "- <sup>d</sup> **Angle distortion**: per triangle corner |angle on the sphere − angle on the surface|; "
+      "per surface the RMS over its corners (`angle_distortion_rms_degrees`: the paper's text calls its figure "
+      "\"the root mean square change in angle ... 25°\" and \"a rms angle distortion of 10.6° (Table 1)\"); "
+      "**mean** = mean over surfaces, **(max)** = largest per-surface RMS. (Max) cannot be a maximum over "
+      "corners, which is far above the paper's 29.3°.\n";
+  md +=
+      "- <sup>e</sup> **Octant area**: per surface, the % of the surface area whose image (triangle centroid "
+      "direction, after superposition) lies in each octant of the sphere; the column is the RMS of (octant % − "
+      "12.5) over all 8 × surfaces octants pooled (\"most octants have area 12.5 ± 5%\").\n";
+  md +=
+      "- Distortion columns describe the final map; where repair changed nothing they are those of the plain "
+      "algorithm's map.\n\n";
   return md;
 }
 
 std::string details_section(const std::vector<ProtocolSummary>& summaries) {
   std::string md = "## Details\n\n";
-  md += "| Protocol | Triangles (total) | Plain: folded / surfaces with folds / collapsed / certified | "
-        "Final: folded / collapsed / certified | Area: mean of per-surface max (max triangle) | "
-        "Angle: mean of per-surface mean (max corner) | Octants: mean per-surface RMS (min–max octant) |\n";
+  md +=
+      "| Protocol | Triangles (total) | Plain: folded / surfaces with folds / collapsed / certified | "
+      "Final: folded / collapsed / certified | Area: mean of per-surface max (max triangle) | "
+      "Angle: mean of per-surface mean (max corner) | Octants: mean per-surface RMS (min–max octant) |\n";
   md += "|---|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& s : summaries)
-    md += fmt::format("| {} | {} | {} / {} / {} / {} of {} | {} / {} / {} of {} | {:.0f}% ({:.0f}%) | {:.1f}° "
-                      "({:.1f}°) | {:.1f}% ({:.1f}–{:.1f}%) |\n",
-                      protocol_title(s.weights), with_thousands(s.triangles_total),
-                      with_thousands(s.plain_folded_total), s.surfaces - s.plain_surfaces_without_folds,
-                      with_thousands(s.plain_collapsed_total), s.plain_surfaces_certified, s.surfaces,
-                      with_thousands(s.folded_total), with_thousands(s.collapsed_total), s.surfaces_certified,
-                      s.surfaces, s.area_mean_of_maxima_percent, s.area_max_percent, s.angle_mean_of_means_degrees,
-                      s.angle_max_degrees, s.octant_rms_mean_percent, s.octant_min_percent, s.octant_max_percent);
+    md += fmt::format(
+        "| {} | {} | {} / {} / {} / {} of {} | {} / {} / {} of {} | {:.0f}% ({:.0f}%) | {:.1f}° "
+        "({:.1f}°) | {:.1f}% ({:.1f}–{:.1f}%) |\n",
+        protocol_title(s.weights), with_thousands(s.triangles_total), with_thousands(s.plain_folded_total),
+        s.surfaces - s.plain_surfaces_without_folds, with_thousands(s.plain_collapsed_total),
+        s.plain_surfaces_certified, s.surfaces, with_thousands(s.folded_total), with_thousands(s.collapsed_total),
+        s.surfaces_certified, s.surfaces, s.area_mean_of_maxima_percent, s.area_max_percent,
+        s.angle_mean_of_means_degrees, s.angle_max_degrees, s.octant_rms_mean_percent, s.octant_min_percent,
+        s.octant_max_percent);
   return md + "\n";
 }
 
@@ -254,8 +265,9 @@ std::string bullets_section(const std::string& title, const std::vector<std::str
 
 std::string runs_section(const std::vector<ReportSummary>& reports, const std::string& runs_dir) {
   std::string md = "## Runs\n\n";
-  md += "| Report | Input | Weights | Repair | Triangles | Plain folded | Plain collapsed | Folded | Collapsed | "
-        "Certified | Area mean (max) | Angle RMS (max) | Octant RMS |\n";
+  md +=
+      "| Report | Input | Weights | Repair | Triangles | Plain folded | Plain collapsed | Folded | Collapsed | "
+      "Certified | Area mean (max) | Angle RMS (max) | Octant RMS |\n";
   md += "|---|---|---|---|--:|--:|--:|--:|--:|---|--:|--:|--:|\n";
   std::vector<const ReportSummary*> sorted;
   for (const auto& r : reports) sorted.push_back(&r);
@@ -265,14 +277,14 @@ std::string runs_section(const std::vector<ReportSummary>& reports, const std::s
   for (const ReportSummary* r : sorted) {
     const fs::path relative = r->source.lexically_relative(runs_dir);
     const DistortionMetrics& d = r->distortion;
-    md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) "
-                      "| {:.1f}% |\n",
-                      (relative.empty() ? r->source : relative).string(), fs::path(r->input).filename().string(),
-                      r->weights, r->repair ? "yes" : "no", with_thousands(r->triangles), r->plain_certificate.folded,
-                      r->plain_certificate.collapsed, r->certificate.folded, r->certificate.collapsed,
-                      r->certificate.certified ? "yes" : "**no**", d.area_distortion_mean_percent,
-                      d.area_distortion_max_percent, d.angle_distortion_rms_degrees, d.angle_distortion_max_degrees,
-                      d.octant_rms_deviation_percent);
+    md += fmt::format(
+        "| `{}` | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0f}% ({:.0f}%) | {:.1f}° ({:.1f}°) "
+        "| {:.1f}% |\n",
+        (relative.empty() ? r->source : relative).string(), fs::path(r->input).filename().string(), r->weights,
+        r->repair ? "yes" : "no", with_thousands(r->triangles), r->plain_certificate.folded,
+        r->plain_certificate.collapsed, r->certificate.folded, r->certificate.collapsed,
+        r->certificate.certified ? "yes" : "**no**", d.area_distortion_mean_percent, d.area_distortion_max_percent,
+        d.angle_distortion_rms_degrees, d.angle_distortion_max_degrees, d.octant_rms_deviation_percent);
   }
   return md;
 }
@@ -282,12 +294,13 @@ std::string runs_section(const std::vector<ReportSummary>& reports, const std::s
 std::string table1_markdown(const std::vector<ProtocolSummary>& summaries, const std::vector<ReportSummary>& reports,
                             const Table1Context& context) {
   std::string md = "# Table 1 and Figure 4 (Rahi & Sharp), reproduced by spheremap\n\n";
-  md += fmt::format("Runs: every `report.json` under `{}` ({} found), grouped by `options.weights`{}. "
-                    "Written by `spheremap table`.\n\n",
-                    context.runs_dir, context.reports_found,
-                    context.error_runs == 0 ? std::string()
-                                            : fmt::format("; {} failed run(s) (`error.json`, no map) not counted",
-                                                          context.error_runs));
+  md += fmt::format(
+      "Runs: every `report.json` under `{}` ({} found), grouped by `options.weights`{}. "
+      "Written by `spheremap table`.\n\n",
+      context.runs_dir, context.reports_found,
+      context.error_runs == 0
+          ? std::string()
+          : fmt::format("; {} failed run(s) (`error.json`, no map) not counted", context.error_runs));
   md += table1_section(summaries);
   md += footnotes();
   md += details_section(summaries);

@@ -31,7 +31,8 @@ Vec3 random_point_in_unit_ball(std::mt19937& generator) {
   // Rejection from the cube: uniform in the ball, and deterministic because the draw sequence is
   // (braced initializers evaluate left to right, unlike function arguments).
   while (true) {
-    const Vec3 candidate{2 * uniform_unit(generator) - 1, 2 * uniform_unit(generator) - 1, 2 * uniform_unit(generator) - 1};
+    const Vec3 candidate{2 * uniform_unit(generator) - 1, 2 * uniform_unit(generator) - 1,
+                         2 * uniform_unit(generator) - 1};
     if (dot(candidate, candidate) <= 1) return candidate;
   }
 }
@@ -51,12 +52,12 @@ Mesh make_icosphere(int levels) {
     throw std::invalid_argument("make_icosphere: levels must be in [0, 10], got " + std::to_string(levels));
   const double phi = (1 + std::sqrt(5.0)) / 2;
   Mesh mesh;
-  mesh.positions = {{-1, phi, 0}, {1, phi, 0},  {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi}, {0, 1, phi},
+  mesh.positions = {{-1, phi, 0},  {1, phi, 0},  {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi},  {0, 1, phi},
                     {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1},  {phi, 0, 1},  {-phi, 0, -1}, {-phi, 0, 1}};
   for (auto& p : mesh.positions) p = normalized(p);
-  mesh.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  mesh.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                    {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   const std::size_t final_vertex_count = 10 * (std::size_t{1} << (2 * levels)) + 2;
   mesh.positions.reserve(final_vertex_count);
   // Projecting after every level (not only at the end) keeps the triangles close to equilateral.
@@ -67,7 +68,8 @@ Mesh make_icosphere(int levels) {
 Mesh make_ellipsoid(int levels, double ax, double ay, double az) {
   for (const double axis : {ax, ay, az})
     if (!(std::isfinite(axis) && axis > 0))
-      throw std::invalid_argument("make_ellipsoid: semi-axes must be finite and positive (a negative one would turn the mesh inside out)");
+      throw std::invalid_argument(
+          "make_ellipsoid: semi-axes must be finite and positive (a negative one would turn the mesh inside out)");
   Mesh mesh = make_icosphere(levels);
   for (auto& p : mesh.positions) p = {ax * p[0], ay * p[1], az * p[2]};
   return mesh;
@@ -80,8 +82,7 @@ Mesh make_dumbbell(double separation, double neck_radius, int rings, int segment
     throw std::invalid_argument("make_dumbbell: separation must be finite and >= 0");
   if (!(neck_radius > 0 && neck_radius < 1))
     throw std::invalid_argument("make_dumbbell: neck_radius must be in (0, 1)");
-  if (rings < 1 || segments < 3)
-    throw std::invalid_argument("make_dumbbell: need rings >= 1 and segments >= 3");
+  if (rings < 1 || segments < 3) throw std::invalid_argument("make_dumbbell: need rings >= 1 and segments >= 3");
   if (static_cast<std::int64_t>(rings) * segments + 2 > kMaxVertexCount)
     throw std::invalid_argument("make_dumbbell: rings * segments exceeds 32-bit triangle indices");
 
@@ -122,8 +123,10 @@ Mesh make_dumbbell(double separation, double neck_radius, int rings, int segment
     mesh.triangles.push_back({left_pole, ring_vertex(0, segment + 1), ring_vertex(0, segment)});
   for (int ring = 0; ring + 1 < rings; ++ring) {
     for (int segment = 0; segment < segments; ++segment) {
-      mesh.triangles.push_back({ring_vertex(ring, segment), ring_vertex(ring, segment + 1), ring_vertex(ring + 1, segment + 1)});
-      mesh.triangles.push_back({ring_vertex(ring, segment), ring_vertex(ring + 1, segment + 1), ring_vertex(ring + 1, segment)});
+      mesh.triangles.push_back(
+          {ring_vertex(ring, segment), ring_vertex(ring, segment + 1), ring_vertex(ring + 1, segment + 1)});
+      mesh.triangles.push_back(
+          {ring_vertex(ring, segment), ring_vertex(ring + 1, segment + 1), ring_vertex(ring + 1, segment)});
     }
   }
   for (int segment = 0; segment < segments; ++segment)
@@ -172,9 +175,12 @@ class FlipMesh {
   // Throws std::invalid_argument unless `mesh` is a closed, consistently oriented 2-manifold with one fan
   // per vertex.
   explicit FlipMesh(Mesh& mesh)
-      : mesh_(mesh), triangles_(mesh.triangles), half_edge_count_(3 * triangles_.size()),
+      : mesh_(mesh),
+        triangles_(mesh.triangles),
+        half_edge_count_(3 * triangles_.size()),
         edges_(number_edges(mesh.positions.size(), triangles_)),
-        first_half_edge_(edges_.edge_endpoints.size(), half_edge_count_), opposite_(half_edge_count_, half_edge_count_),
+        first_half_edge_(edges_.edge_endpoints.size(), half_edge_count_),
+        opposite_(half_edge_count_, half_edge_count_),
         degree_(mesh.positions.size(), 0) {
     for (std::size_t h = 0; h < half_edge_count_; ++h) {
       const auto edge = static_cast<std::size_t>(edges_.edge_of_half_edge[h]);
@@ -183,7 +189,8 @@ class FlipMesh {
         first_half_edge_[edge] = h;
         continue;
       }
-      if (opposite_[partner] != half_edge_count_ || half_edge_origin(triangles_, partner) != half_edge_target(triangles_, h))
+      if (opposite_[partner] != half_edge_count_ ||
+          half_edge_origin(triangles_, partner) != half_edge_target(triangles_, h))
         throw std::invalid_argument("random_edge_flips: mesh is not a consistently oriented 2-manifold");
       opposite_[partner] = h;
       opposite_[h] = partner;
@@ -263,7 +270,8 @@ class FlipMesh {
         around = opposite_[previous_half_edge(around)];
       } while (around != h && fan_size <= degree_[v]);
       if (fan_size != degree_[v])
-        throw std::invalid_argument("random_edge_flips: vertex " + std::to_string(v) + " is not manifold (several fans)");
+        throw std::invalid_argument("random_edge_flips: vertex " + std::to_string(v) +
+                                    " is not manifold (several fans)");
     }
   }
   [[nodiscard]] bool are_neighbors(std::size_t half_edge_from_vertex, std::int32_t other) const {
@@ -313,7 +321,9 @@ Mesh make_subdivided_cube(int n) {
   const auto grid_size = static_cast<std::int64_t>(n) + 1;
   // Dense lookup from grid coordinates (i, j, k) in [0, n]^3 would be (n+1)^3 entries; the surface has
   // only ~6 n^2 points, so key them by a face-independent code in a sorted table instead.
-  const auto point_code = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return (i * grid_size + j) * grid_size + k; };
+  const auto point_code = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (i * grid_size + j) * grid_size + k;
+  };
 
   std::vector<std::int64_t> surface_codes;
   surface_codes.reserve(6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n) + 2);
@@ -335,7 +345,8 @@ Mesh make_subdivided_cube(int n) {
   }
   const auto vertex_at = [&](const std::array<std::int64_t, 3>& grid_point) {
     const auto code = point_code(grid_point[0], grid_point[1], grid_point[2]);
-    return static_cast<std::int32_t>(std::lower_bound(surface_codes.begin(), surface_codes.end(), code) - surface_codes.begin());
+    return static_cast<std::int32_t>(std::lower_bound(surface_codes.begin(), surface_codes.end(), code) -
+                                     surface_codes.begin());
   };
 
   mesh.triangles.reserve(12 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n));

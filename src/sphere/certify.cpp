@@ -1,16 +1,16 @@
 #include "spheremap/sphere/certify.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
+#include "../util/parallel.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "../util/parallel.hpp"
 
 namespace spheremap {
 namespace {
@@ -96,19 +96,21 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
   std::vector<double> area(count);
   constexpr std::uint8_t kPositive = 1, kDecidedExactly = 2;
   std::vector<std::uint8_t> verdict(count);
-  detail::parallel_ranges(static_cast<std::int64_t>(count), 16384, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
-    for (auto index = static_cast<std::size_t>(first); index < static_cast<std::size_t>(last); ++index) {
-      const auto& t = surface.triangles[index];
-      const Vec3& a = sphere[t[0]];
-      const Vec3& b = sphere[t[1]];
-      const Vec3& c = sphere[t[2]];
-      omega[index] = signed_solid_angle(a, b, c);
-      bool decided_exactly = false;
-      const int orientation = orientation_sign(a, b, c, &decided_exactly);
-      verdict[index] = static_cast<std::uint8_t>((orientation > 0 ? kPositive : 0) | (decided_exactly ? kDecidedExactly : 0));
-      area[index] = triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]);
-    }
-  });
+  detail::parallel_ranges(
+      static_cast<std::int64_t>(count), 16384, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
+        for (auto index = static_cast<std::size_t>(first); index < static_cast<std::size_t>(last); ++index) {
+          const auto& t = surface.triangles[index];
+          const Vec3& a = sphere[t[0]];
+          const Vec3& b = sphere[t[1]];
+          const Vec3& c = sphere[t[2]];
+          omega[index] = signed_solid_angle(a, b, c);
+          bool decided_exactly = false;
+          const int orientation = orientation_sign(a, b, c, &decided_exactly);
+          verdict[index] =
+              static_cast<std::uint8_t>((orientation > 0 ? kPositive : 0) | (decided_exactly ? kDecidedExactly : 0));
+          area[index] = triangle_area(surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]);
+        }
+      });
 
   CompensatedSum surface_area;
   for (const double a : area) surface_area.add(a);
@@ -129,7 +131,8 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
     any_positive = true;
     // A triangle with no area on the surface has no fair share of the sphere to fall short of, so
     // its ratio is +inf and it is never collapsed (it also keeps this loop free of 0/0).
-    const double ratio = area[index] > 0 ? (omega[index] / kFullSphere) / (area[index] / total_surface_area) : kInfinity;
+    const double ratio =
+        area[index] > 0 ? (omega[index] / kFullSphere) / (area[index] / total_surface_area) : kInfinity;
     min_area_ratio = std::min(min_area_ratio, ratio);
     if (ratio < collapse_floor) certificate.collapsed_triangles.push_back(static_cast<std::int32_t>(index));
   }

@@ -8,13 +8,13 @@
 #include <optional>
 #include <vector>
 
+#include "../util/stage_timer.hpp"
 #include "spheremap/geometry/superposition.hpp"
 #include "spheremap/mesh.hpp"
 #include "spheremap/sphere/certify.hpp"
 #include "spheremap/sphere/map.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "untangle.hpp"
-#include "../util/stage_timer.hpp"
 
 namespace spheremap::detail {
 

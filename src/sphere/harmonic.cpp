@@ -1,10 +1,10 @@
 #include "harmonic.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <cholmod.h>
+#include <omp.h>
+#include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -188,8 +188,8 @@ void keep_openmp_serial() {
 }
 
 // The matrix of `problem` over its unknowns, both triangles (for the fill-reducing order and LU).
-Eigen::SparseMatrix<double> problem_matrix(const HarmonicProblem& problem, const std::vector<std::int32_t>& unknown_index,
-                                           std::int32_t unknowns) {
+Eigen::SparseMatrix<double> problem_matrix(const HarmonicProblem& problem,
+                                           const std::vector<std::int32_t>& unknown_index, std::int32_t unknowns) {
   const auto& rings = *problem.rings;
   const auto& w = problem.weights->values;
   std::vector<Eigen::Triplet<double>> entries;
@@ -229,8 +229,8 @@ struct Cholmod {
   Cholmod& operator=(const Cholmod&) = delete;
 };
 
-bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32_t>& unknown_index, std::int32_t unknowns,
-                    std::vector<double>& x) {
+bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32_t>& unknown_index,
+                    std::int32_t unknowns, std::vector<double>& x) {
   keep_openmp_serial();
   const auto& rings = *problem.rings;
   const auto n = rings.vertex_count();
@@ -239,9 +239,10 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
     if (!problem.fixed[v]) unknown_positions[unknown_index[v]] = (*problem.positions)[v];
   const Eigen::SparseMatrix<double> matrix = problem_matrix(problem, unknown_index, unknowns);
   // Fill-reducing order of our own (geometric nested dissection): CHOLMOD's default search tries
-  // several orderings (far slower than the factorization) and plain AMD fills more on smooth surface meshes (on molecular surfaces it fills less: map_to_sphere chooses between the
-  // two through ReusableCholesky, which this one-off solve does not). The lower triangle is written
-  // column by column in that order, directly in CHOLMOD's format, and factorized in natural order.
+  // several orderings (far slower than the factorization) and plain AMD fills more on smooth surface meshes (on
+  // molecular surfaces it fills less: map_to_sphere chooses between the two through ReusableCholesky, which this
+  // one-off solve does not). The lower triangle is written column by column in that order, directly in CHOLMOD's
+  // format, and factorized in natural order.
   const auto order = nested_dissection_order(matrix, unknown_positions);  // order[k]: unknown at row k
   std::vector<std::int32_t> row_of(static_cast<std::size_t>(unknowns));
   for (std::int32_t k = 0; k < unknowns; ++k) row_of[order[k]] = k;
@@ -269,7 +270,8 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
   if (cholmod.factor) cholmod_factorize(lower, cholmod.factor, &cholmod.common);
   cholmod_free_sparse(&lower, &cholmod.common);
   // An indefinite matrix (cotangent weights) is expected: the caller falls back to LU.
-  if (!cholmod.factor || cholmod.common.status != CHOLMOD_OK || cholmod.factor->minor < static_cast<std::size_t>(unknowns))
+  if (!cholmod.factor || cholmod.common.status != CHOLMOD_OK ||
+      cholmod.factor->minor < static_cast<std::size_t>(unknowns))
     return false;
   cholmod_dense* rhs = cholmod_zeros(static_cast<std::size_t>(unknowns), 1, CHOLMOD_REAL, &cholmod.common);
   if (!rhs) throw std::bad_alloc();
@@ -358,7 +360,8 @@ namespace {
 // upper triangle's pattern (with the diagonal) of a symmetric matrix, column by column.
 template <typename Ordering>
 EliminationOrder cholmod_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
-                                           const std::vector<char>& always_fixed, FillReducingOrder method, Ordering&& ordering) {
+                                           const std::vector<char>& always_fixed, FillReducingOrder method,
+                                           Ordering&& ordering) {
   const auto unknowns = number_unknowns(rings.vertex_count(), always_fixed);
   const auto count = static_cast<std::int32_t>(unknowns.vertex.size());
   if (count == 0) return {{}, method};
@@ -394,16 +397,18 @@ EliminationOrder cholmod_elimination_order(const VertexRings& rings, const std::
 
 EliminationOrder metis_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                          const std::vector<char>& always_fixed) {
-  return cholmod_elimination_order(rings, positions, always_fixed, FillReducingOrder::kMetis, [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
-    return cholmod_metis(upper, nullptr, 0, /*postorder=*/1, permutation, common);
-  });
+  return cholmod_elimination_order(rings, positions, always_fixed, FillReducingOrder::kMetis,
+                                   [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
+                                     return cholmod_metis(upper, nullptr, 0, /*postorder=*/1, permutation, common);
+                                   });
 }
 
 EliminationOrder amd_elimination_order(const VertexRings& rings, const std::vector<Vec3>& positions,
                                        const std::vector<char>& always_fixed) {
-  return cholmod_elimination_order(rings, positions, always_fixed, FillReducingOrder::kAmd, [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
-    return cholmod_amd(upper, nullptr, 0, permutation, common);
-  });
+  return cholmod_elimination_order(rings, positions, always_fixed, FillReducingOrder::kAmd,
+                                   [](cholmod_sparse* upper, int* permutation, cholmod_common* common) {
+                                     return cholmod_amd(upper, nullptr, 0, permutation, common);
+                                   });
 }
 
 ReusableCholesky::ReusableCholesky(const VertexRings& rings, const std::vector<Vec3>& positions,

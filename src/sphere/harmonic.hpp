@@ -113,7 +113,8 @@ class ReusableCholesky {
   [[nodiscard]] bool supernodal() const;
 
  private:
-  void analyse(const VertexRings& rings, std::vector<std::int32_t> vertex_of_row, const std::vector<std::int32_t>& last);
+  void analyse(const VertexRings& rings, std::vector<std::int32_t> vertex_of_row,
+               const std::vector<std::int32_t>& last);
   struct State;
   std::unique_ptr<State> state_;
 };

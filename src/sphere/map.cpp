@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "../util/stage_timer.hpp"
 #include "finish.hpp"
 #include "harmonic.hpp"
 #include "objective.hpp"
@@ -21,7 +22,6 @@
 #include "spheremap/sphere/poles.hpp"
 #include "spheremap/topology/connectivity.hpp"
 #include "spheremap/topology/subdivide.hpp"
-#include "../util/stage_timer.hpp"
 
 namespace spheremap {
 
@@ -114,9 +114,10 @@ MapPoles choose_poles(const Mesh& mesh, const VertexRings& rings, const MapOptio
   }
   poles.graph_distance = graph_distances(rings, poles.north)[poles.south];
   if (poles.from_options && poles.graph_distance < 2)
-    throw InputError(fmt::format("poles {},{} are joined by an edge, which cannot join two antipodal points; choose "
-                                 "poles at least 2 edges apart (or leave --poles out)",
-                                 poles.north, poles.south));
+    throw InputError(
+        fmt::format("poles {},{} are joined by an edge, which cannot join two antipodal points; choose "
+                    "poles at least 2 edges apart (or leave --poles out)",
+                    poles.north, poles.south));
   return poles;
 }
 
@@ -159,7 +160,7 @@ std::vector<Vec3> map_refined(const Mesh& mesh, const VertexRings& rings, const 
   } while (inner_distance < 4);
   MapOptions inner = options;
   inner.poles = std::make_pair(north, inner_south);
-  inner.fallback = false;  // the fallback, if needed, maps the input itself (map_to_sphere)
+  inner.fallback = false;                  // the fallback, if needed, maps the input itself (map_to_sphere)
   inner.objective = MapObjective::kPaper;  // the input's map is optimized, not the subdivision's
   const SphereMap refined_map = map_to_sphere(refined, inner);
   // Back to the inner map's pole-aligned frame: θ, φ and the superposition are taken from there.

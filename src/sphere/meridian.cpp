@@ -52,8 +52,10 @@ Meridian boundary_meridian(const VertexRings& rings, const std::vector<double>& 
       path.push_back(current);
       if (on_south_ring[current]) break;
       const auto next = lowest_neighbour(current);
-      if (next < 0 || !lower(next, current)) stalled = true;
-      else current = next;
+      if (next < 0 || !lower(next, current))
+        stalled = true;
+      else
+        current = next;
     }
     if (!stalled) {
       meridian.path = std::move(path);

@@ -198,7 +198,7 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
 }
 
 std::unique_ptr<ReusableCholesky> make_factor(const WorkingMesh& work, const OrderChoice& order,
-                                                      const std::vector<std::int32_t>& last) {
+                                              const std::vector<std::int32_t>& last) {
   if (order.chosen) return std::make_unique<ReusableCholesky>(work.rings, *order.chosen, last);
   return std::make_unique<ReusableCholesky>(work.rings, work.positions, order.always_fixed, last);
 }

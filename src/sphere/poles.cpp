@@ -160,9 +160,8 @@ std::pair<std::int32_t, std::int32_t> farthest_pair(const std::vector<Vec3>& pos
   std::vector<std::int32_t> outside_in;
   for (std::int32_t i = 0; i < n; ++i)
     if (!beyond_reach(i)) outside_in.push_back(i);
-  std::sort(outside_in.begin(), outside_in.end(), [&](std::int32_t x, std::int32_t y) {
-    return radius[x] != radius[y] ? radius[x] > radius[y] : x < y;
-  });
+  std::sort(outside_in.begin(), outside_in.end(),
+            [&](std::int32_t x, std::int32_t y) { return radius[x] != radius[y] ? radius[x] > radius[y] : x < y; });
   // Updates (best, pair) with every point j whose distance to point i beats or ties it (ties go to the
   // smaller index pair): by a scan of all points for the first few visited, through a k-d tree (built
   // then) for the rest. Either finds the same pairs.

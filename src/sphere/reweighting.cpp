@@ -74,8 +74,7 @@ std::vector<double> vertex_area_ratios(const WorkingMesh& work, const TriangleAr
   return ratio;
 }
 
-std::vector<Vec3> all_sphere_points(const PlanarCoordinates& planar, std::int32_t north, std::int32_t south,
-                                    double c) {
+std::vector<Vec3> all_sphere_points(const PlanarCoordinates& planar, std::int32_t north, std::int32_t south, double c) {
   return to_sphere(planar, north, south, c, static_cast<std::int32_t>(planar.z.size()));
 }
 
@@ -99,9 +98,17 @@ class GainedMaps {
  public:
   GainedMaps(const Mesh& mesh, const WorkingMesh& work, std::int32_t north, std::int32_t south, double mercator_c,
              const EdgeWeights& base, const MapOptions& options, OrderChoice& order)
-      : mesh_(mesh), work_(work), north_(north), south_(south), mercator_c_(mercator_c), base_(base),
-        options_(options), order_(order), reuse_(options.solver == Solver::kDirect && base.symmetric),
-        weights_(base), gain_(static_cast<std::size_t>(work.rings.vertex_count())),
+      : mesh_(mesh),
+        work_(work),
+        north_(north),
+        south_(south),
+        mercator_c_(mercator_c),
+        base_(base),
+        options_(options),
+        order_(order),
+        reuse_(options.solver == Solver::kDirect && base.symmetric),
+        weights_(base),
+        gain_(static_cast<std::size_t>(work.rings.vertex_count())),
         input_areas_(triangle_areas(mesh.positions, mesh.triangles)),
         split_(work.triangles.size() != mesh.triangles.size()),
         work_areas_(split_ ? triangle_areas(work.positions, work.triangles) : TriangleAreas{}) {}
@@ -299,8 +306,8 @@ ReweightingOutcome reweight_against_collapse(const Mesh& mesh, const WorkingMesh
   if (!outcome.best.certificate.certified() && !outcome.finished)
     outcome.finished = finish_map(mesh, input, outcome.best.sphere, options);
 
-  const bool certified = outcome.best.certificate.certified() ||
-                         (outcome.finished && outcome.finished->certificate.certified());
+  const bool certified =
+      outcome.best.certificate.certified() || (outcome.finished && outcome.finished->certificate.certified());
   if (certified && options.max_equalizing_rounds > 0)
     equalizing_rounds(maps, mesh, work, options, input, outcome, log_gain);
   return outcome;

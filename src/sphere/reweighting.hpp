@@ -26,7 +26,7 @@ struct Candidate {
 struct ReweightingOutcome {
   Candidate best;
   int rounds = 0;
-  int equalizing_rounds = 0;  // of `rounds`, those kept by the equalizing phase
+  int equalizing_rounds = 0;         // of `rounds`, those kept by the equalizing phase
   std::optional<Finished> finished;  // the best round finished (superposed, untangled, certified), if tried
 };
 

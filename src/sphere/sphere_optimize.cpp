@@ -16,8 +16,7 @@ namespace spheremap {
 
 const char* to_string(SphereEnergy energy) {
   switch (energy) {
-    case SphereEnergy::kSymmetricDirichlet:
-      return "symmetric-dirichlet";
+    case SphereEnergy::kSymmetricDirichlet: return "symmetric-dirichlet";
     case SphereEnergy::kLogAreaRatio: return "log-area-ratio";
     case SphereEnergy::kConformal: return "conformal-mips";
   }

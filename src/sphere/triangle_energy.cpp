@@ -183,8 +183,7 @@ double conformal(const RestTriangle& rest, const Vec3& a, const Vec3& b, const V
 
 double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
   switch (energy) {
-    case SphereEnergy::kSymmetricDirichlet:
-      return symmetric_dirichlet(rest, a, b, c);
+    case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c);
     case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, a, b, c);
     case SphereEnergy::kConformal: return conformal(rest, a, b, c);
   }
@@ -194,8 +193,7 @@ double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3
 double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c,
                        Vector9& gradient, Matrix9& hessian) {
   switch (energy) {
-    case SphereEnergy::kSymmetricDirichlet:
-      return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
+    case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
     case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, a, b, c, gradient, hessian);
     case SphereEnergy::kConformal: return conformal(rest, a, b, c, gradient, hessian);
   }

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "../util/parallel.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/certify.hpp"
-#include "../util/parallel.hpp"
 
 namespace spheremap::detail {
 
@@ -50,8 +50,14 @@ void clip(const std::vector<Point2>& polygon, double ax, double ay, double b, st
 
 class Untangler {
  public:
-  Untangler(const Mesh& surface, const VertexRings& rings, const UntanglingFrame& frame, std::vector<Vec3>& sphere, double floor)
-      : surface_(surface), rings_(rings), sphere_(sphere), floor_(floor), target_(frame.target), star_triangle_(frame.star_triangle) {}
+  Untangler(const Mesh& surface, const VertexRings& rings, const UntanglingFrame& frame, std::vector<Vec3>& sphere,
+            double floor)
+      : surface_(surface),
+        rings_(rings),
+        sphere_(sphere),
+        floor_(floor),
+        target_(frame.target),
+        star_triangle_(frame.star_triangle) {}
 
   // Smallest quality of the triangles around v if v were at p: solid angle / target, where a triangle
   // the exact predicate calls folded counts as negative whatever the rounded solid angle says.
@@ -108,7 +114,8 @@ class Untangler {
     }
     double extent = 0;
     for (const auto& c : chart) extent = std::max({extent, std::abs(c[0]), std::abs(c[1])});
-    const std::vector<Point2> box{{-2 * extent, -2 * extent}, {2 * extent, -2 * extent}, {2 * extent, 2 * extent}, {-2 * extent, 2 * extent}};
+    const std::vector<Point2> box{
+        {-2 * extent, -2 * extent}, {2 * extent, -2 * extent}, {2 * extent, 2 * extent}, {-2 * extent, 2 * extent}};
     auto region_for = [&](double t) -> const std::vector<Point2>& {
       polygon_ = box;
       for (std::size_t k = 0; k < size && !polygon_.empty(); ++k) {
@@ -139,7 +146,8 @@ class Untangler {
     const auto& region = region_for(low - 1e-3 * std::abs(low - current_t));
     if (region.size() < 3) return false;
     Point2 mean{0, 0};
-    for (const auto& q : region) mean[0] += q[0] / static_cast<double>(region.size()), mean[1] += q[1] / static_cast<double>(region.size());
+    for (const auto& q : region)
+      mean[0] += q[0] / static_cast<double>(region.size()), mean[1] += q[1] / static_cast<double>(region.size());
     const Vec3 candidate = normalized(centre + mean[0] * e1 + mean[1] * e2);
     if (star_quality(v, candidate) > star_quality(v, sphere_[v])) {
       sphere_[v] = candidate;

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "../util/rounding.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/molecule/structure.hpp"
-#include "../util/rounding.hpp"
 
 namespace spheremap::detail {
 
@@ -41,7 +41,8 @@ class AtomGrid {
     spheres_.resize(atoms.size());
     std::vector<std::int32_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t a = 0; a < atoms.size(); ++a)
-      spheres_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[a])]++)] = {atoms[a].position, atoms[a].radius, static_cast<std::int32_t>(a)};
+      spheres_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[a])]++)] = {
+          atoms[a].position, atoms[a].radius, static_cast<std::int32_t>(a)};
   }
 
   /// Calls visit(sphere) for every atom in the cells that meet the cube of half-width `reach` around p
@@ -69,9 +70,11 @@ class AtomGrid {
   /// norm(p - centre) - radius), ties to the smallest index. `hint` (any atom, e.g. the answer for a
   /// nearby point) gives the first bound; the answer does not depend on it. Only cells that can hold a
   /// nearer sphere are visited. `largest_radius`: at least every atom's radius.
-  [[nodiscard]] std::int32_t nearest_sphere(const Vec3& p, double largest_radius, std::int32_t hint, const std::vector<Atom>& atoms) const {
+  [[nodiscard]] std::int32_t nearest_sphere(const Vec3& p, double largest_radius, std::int32_t hint,
+                                            const std::vector<Atom>& atoms) const {
     std::int32_t chosen = hint;
-    double best = norm(p - atoms[static_cast<std::size_t>(hint)].position) - atoms[static_cast<std::size_t>(hint)].radius;
+    double best =
+        norm(p - atoms[static_cast<std::size_t>(hint)].position) - atoms[static_cast<std::size_t>(hint)].radius;
     // An atom can only be nearer if its centre is within best + largest_radius of p.
     std::array<std::int64_t, 3> first, last;
     if (!cell_range(p, best + largest_radius, first, last)) return chosen;
@@ -117,12 +120,12 @@ class AtomGrid {
  private:
   std::array<std::int64_t, 3> cell_index(const Vec3& p) const {
     std::array<std::int64_t, 3> c;
-    for (int d = 0; d < 3; ++d)
-      c[d] = std::clamp<std::int64_t>(floor_to_int((p[d] - lo_[d]) / cell_), 0, n_[d] - 1);
+    for (int d = 0; d < 3; ++d) c[d] = std::clamp<std::int64_t>(floor_to_int((p[d] - lo_[d]) / cell_), 0, n_[d] - 1);
     return c;
   }
   // The cells that meet the cube of half-width `reach` around p; false when there are none.
-  bool cell_range(const Vec3& p, double reach, std::array<std::int64_t, 3>& first, std::array<std::int64_t, 3>& last) const {
+  bool cell_range(const Vec3& p, double reach, std::array<std::int64_t, 3>& first,
+                  std::array<std::int64_t, 3>& last) const {
     for (int d = 0; d < 3; ++d) {
       first[d] = std::max<std::int64_t>(0, floor_to_int((p[d] - reach - lo_[d]) / cell_));
       last[d] = std::min<std::int64_t>(n_[d] - 1, floor_to_int((p[d] + reach - lo_[d]) / cell_));

@@ -48,7 +48,8 @@ inline bool certainly_covered(const std::vector<CoverTerm>& terms, CoverScratch&
     // Exposed where cos(θ - φ) > room / spread, i.e. |θ - φ| < half; covered is θ - φ in (half, 2π - half).
     // The ends are (a, b) turned by ±half, scaled by spread (pseudo_angle does not depend on length):
     // no division but pseudo_angle's.
-    if (t.room < (-1 + 1e-12) * t.spread) continue;  // a sliver (or nothing): leaving it out only makes the answer "unsure"
+    if (t.room < (-1 + 1e-12) * t.spread)
+      continue;  // a sliver (or nothing): leaving it out only makes the answer "unsure"
     const double cosine = t.room, sine = std::sqrt(std::max(0.0, (t.spread - t.room) * (t.spread + t.room)));
     const double start = pseudo_angle(t.a * cosine - t.b * sine, t.b * cosine + t.a * sine);
     if (!(start >= 0 && start <= 4)) return false;  // not a number: cannot happen (spread > 0), kept out of the cast

@@ -16,16 +16,15 @@ namespace {
 
 // Corners of a cell as offsets (corner c = x + 2y + 4z); the Freudenthal tetrahedra walk from corner 0
 // to corner 7 adding one axis at a time, in each of the six axis orders.
-constexpr std::array<std::array<int, 3>, 8> kCorner = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
-                                                         {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
-constexpr std::array<std::array<int, 4>, 6> kTetrahedra = {{{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
-                                                            {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}}};
+constexpr std::array<std::array<int, 3>, 8> kCorner = {
+    {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
+constexpr std::array<std::array<int, 4>, 6> kTetrahedra = {
+    {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}}};
 // The seven lattice edges leaving a sample upwards: +x, +y, +z, +x+y, +x+z, +y+z, +x+y+z. Every edge of a
 // Freudenthal tetrahedron joins a corner to one whose axes include its own, so it is one of these.
-constexpr std::array<std::array<int, 3>, 7> kEdgeOffset = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0},
-                                                            {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
+constexpr std::array<std::array<int, 3>, 7> kEdgeOffset = {
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
 constexpr std::array<int, 8> kEdgeTypeOfAxes = {-1, 0, 1, 3, 2, 4, 5, 6};  // axis bits (x=1, y=2, z=4) -> type
-
 
 // Bits set in a byte, by table (std::popcount is a library call without -mpopcnt).
 constexpr std::array<std::uint8_t, 256> kBitCount = [] {
@@ -60,7 +59,8 @@ const std::array<CellCase, 256>& cell_cases() {
         if (dot(normal, mid[0] - corner_point(from)) < 0) std::swap(edges[1], edges[2]);
         auto& out = cell.edges[cell.triangles++];
         for (int e = 0; e < 3; ++e) {
-          const int lower = std::min(edges[e].first, edges[e].second), upper = std::max(edges[e].first, edges[e].second);
+          const int lower = std::min(edges[e].first, edges[e].second),
+                    upper = std::max(edges[e].first, edges[e].second);
           out[e] = {static_cast<std::uint8_t>(lower), static_cast<std::uint8_t>(kEdgeTypeOfAxes[upper & ~lower])};
         }
       };
@@ -89,15 +89,24 @@ template <typename T>
 class Contour {
  public:
   Contour(const Grid3<T>& field, double level, int threads, double minimum_fraction)
-      : field_(field), level_(level), threshold_(threshold_for(level)), minimum_fraction_(minimum_fraction), threads_(detail::surface_threads(threads)), nx_(field.size[0]), ny_(field.size[1]),
-        nz_(field.size[2]), plane_(nx_ * ny_) {}
+      : field_(field),
+        level_(level),
+        threshold_(threshold_for(level)),
+        minimum_fraction_(minimum_fraction),
+        threads_(detail::surface_threads(threads)),
+        nx_(field.size[0]),
+        ny_(field.size[1]),
+        nz_(field.size[2]),
+        plane_(nx_ * ny_) {}
 
   Mesh run() {
-    if (nx_ < 2 || ny_ < 2 || nz_ < 2) throw std::invalid_argument("contour_isosurface: the grid needs at least 2 samples per axis");
+    if (nx_ < 2 || ny_ < 2 || nz_ < 2)
+      throw std::invalid_argument("contour_isosurface: the grid needs at least 2 samples per axis");
     find_active_rows();
     check_border();
     // Pass 1: vertices (crossing edges) owned by each plane and triangles of each cell layer.
-    std::vector<std::int64_t> vertex_start(static_cast<std::size_t>(nz_) + 1, 0), triangle_start(static_cast<std::size_t>(nz_) + 1, 0);
+    std::vector<std::int64_t> vertex_start(static_cast<std::size_t>(nz_) + 1, 0),
+        triangle_start(static_cast<std::size_t>(nz_) + 1, 0);
     const auto& cases = cell_cases();
     std::vector<std::unique_ptr<Planes>> buffers(static_cast<std::size_t>(threads_));
     auto planes_of = [&](int worker) -> Planes& {
@@ -113,11 +122,13 @@ class Contour {
       std::int64_t vertices = 0, triangles = 0;
       for (std::int64_t s = 0; s < plane_; ++s) vertices += kBitCount[planes.mask[0][s]];
       if (k + 1 < nz_)
-        for_cells(k, planes.sign[0], planes.sign[1], planes.cells, [&](std::int64_t, std::int64_t, int mask) { triangles += cases[mask].triangles; });
+        for_cells(k, planes.sign[0], planes.sign[1], planes.cells,
+                  [&](std::int64_t, std::int64_t, int mask) { triangles += cases[mask].triangles; });
       vertex_start[k + 1] = vertices;
       triangle_start[k + 1] = triangles;
     });
-    for (std::int64_t k = 0; k < nz_; ++k) vertex_start[k + 1] += vertex_start[k], triangle_start[k + 1] += triangle_start[k];
+    for (std::int64_t k = 0; k < nz_; ++k)
+      vertex_start[k + 1] += vertex_start[k], triangle_start[k + 1] += triangle_start[k];
     if (vertex_start[nz_] > std::numeric_limits<std::int32_t>::max())
       throw std::invalid_argument("contour_isosurface: more than 2^31 vertices; use a coarser grid");
     Mesh mesh;
@@ -220,7 +231,8 @@ class Contour {
         const std::int64_t start = k * plane_ + j * nx_;
         bad = k == 0 || k == nz_ - 1 || j == 0 || j == ny_ - 1 || inside(start) || inside(start + nx_ - 1);
       }
-    if (bad) throw std::invalid_argument("contour_isosurface: the surface reaches the border of the grid; pad the grid");
+    if (bad)
+      throw std::invalid_argument("contour_isosurface: the surface reaches the border of the grid; pad the grid");
   }
 
   void signs(std::int64_t k, std::vector<std::uint8_t>& out) const {
@@ -254,8 +266,9 @@ class Contour {
       // Edge types (kEdgeOffset): 0 +x, 1 +y, 2 +z, 3 +x+y, 4 +x+z, 5 +y+z, 6 +x+y+z.
       for (std::int64_t i = 0; i + 1 < n; ++i) {
         const std::uint8_t own = h0[i];
-        row[i] = static_cast<std::uint8_t>((h0[i + 1] ^ own) | (h1[i] ^ own) << 1 | (a0[i] ^ own) << 2 | (h1[i + 1] ^ own) << 3 |
-                                           (a0[i + 1] ^ own) << 4 | (a1[i] ^ own) << 5 | (a1[i + 1] ^ own) << 6);
+        row[i] = static_cast<std::uint8_t>((h0[i + 1] ^ own) | (h1[i] ^ own) << 1 | (a0[i] ^ own) << 2 |
+                                           (h1[i + 1] ^ own) << 3 | (a0[i + 1] ^ own) << 4 | (a1[i] ^ own) << 5 |
+                                           (a1[i + 1] ^ own) << 6);
       }
       const std::int64_t i = n - 1;
       const std::uint8_t own = h0[i];
@@ -265,7 +278,8 @@ class Contour {
 
   // first[s]: the index of the first vertex of sample s of plane k (vertices are numbered by sample,
   // then by edge type).
-  void firsts(std::int64_t k, const std::vector<std::uint8_t>& mask, std::int64_t start, std::vector<std::int64_t>& out) const {
+  void firsts(std::int64_t k, const std::vector<std::uint8_t>& mask, std::int64_t start,
+              std::vector<std::int64_t>& out) const {
     std::int64_t next = start;
     for (std::int64_t j = 0; j < ny_; ++j) {
       if (!group_active(j, k)) continue;  // no crossing edge in this row: never looked up
@@ -277,7 +291,8 @@ class Contour {
     }
   }
 
-  void write_positions(std::int64_t k, const std::vector<std::uint8_t>& mask, std::int64_t start, std::vector<Vec3>& positions) const {
+  void write_positions(std::int64_t k, const std::vector<std::uint8_t>& mask, std::int64_t start,
+                       std::vector<Vec3>& positions) const {
     std::int64_t next = start;
     for (std::int64_t j = 0; j < ny_; ++j) {
       if (!group_active(j, k)) continue;
@@ -302,8 +317,8 @@ class Contour {
   // one vectorized pass; runs of 8 cells all outside (0) or all inside (255), most of them, are then
   // passed over a word at a time.
   template <typename Visit>
-  void for_cells(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above, std::vector<std::uint8_t>& cells,
-                 Visit&& visit) const {
+  void for_cells(std::int64_t k, const std::vector<std::uint8_t>& here, const std::vector<std::uint8_t>& above,
+                 std::vector<std::uint8_t>& cells, Visit&& visit) const {
     const std::int64_t n = nx_ - 1, words = (n + 7) / 8;  // locals: `cells` could alias the members
     cells.resize(static_cast<std::size_t>(words * 8));
     std::uint8_t* out = cells.data();
@@ -312,7 +327,8 @@ class Contour {
       if (!group_active(j, k)) continue;
       const std::uint8_t *h0 = here.data() + j * nx_, *h1 = h0 + nx_, *a0 = above.data() + j * nx_, *a1 = a0 + nx_;
       for (std::int64_t i = 0; i < n; ++i)
-        out[i] = static_cast<std::uint8_t>(h0[i] | h0[i + 1] << 1 | h1[i] << 2 | h1[i + 1] << 3 | a0[i] << 4 | a0[i + 1] << 5 | a1[i] << 6 | a1[i + 1] << 7);
+        out[i] = static_cast<std::uint8_t>(h0[i] | h0[i + 1] << 1 | h1[i] << 2 | h1[i + 1] << 3 | a0[i] << 4 |
+                                           a0[i + 1] << 5 | a1[i] << 6 | a1[i + 1] << 7);
       for (std::int64_t w = 0; w < words; ++w) {
         std::uint64_t word;
         std::memcpy(&word, out + 8 * w, sizeof word);

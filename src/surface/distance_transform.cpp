@@ -21,8 +21,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // divisions, whose correctly rounded quotients of such fractions never tie unless the fractions do.
 // Zeros inside a run of zeros are left out: every sample outside the run is nearer to an end of it,
 // and the run's own samples are 0 (which is what the envelope gives them, the transform being exact).
-void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v, std::vector<double>& numerator,
-                    std::vector<double>& denominator, std::vector<double>& rooted) {
+void transform_line(const double* f, double* d, std::int64_t n, std::vector<std::int64_t>& v,
+                    std::vector<double>& numerator, std::vector<double>& denominator, std::vector<double>& rooted) {
   v.resize(static_cast<std::size_t>(n));
   numerator.resize(static_cast<std::size_t>(n));
   denominator.resize(static_cast<std::size_t>(n));
@@ -92,8 +92,9 @@ void binary_line(const double* f, double* d, std::int64_t n) {
 // (out is written there only; first == end when none). Zeros before the first and after the last
 // nonzero value stay zero and only the nearest of each run can be anyone's nearest, so the transform
 // runs on what lies between them, which in a molecule's grid is often half the line or less.
-std::pair<std::int64_t, std::int64_t> transform_any_line(const double* in, double* out, std::int64_t n, std::vector<std::int64_t>& v,
-                                                         std::vector<double>& numerator, std::vector<double>& denominator,
+std::pair<std::int64_t, std::int64_t> transform_any_line(const double* in, double* out, std::int64_t n,
+                                                         std::vector<std::int64_t>& v, std::vector<double>& numerator,
+                                                         std::vector<double>& denominator,
                                                          std::vector<double>& rooted) {
   std::int64_t first = 0, end = n;
   while (first < n && in[first] == 0) ++first;
@@ -128,15 +129,16 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
   };
   std::vector<Scratch> scratch(static_cast<std::size_t>(workers));
   const std::int64_t longest = std::max({nx, ny, nz});
-  for (auto& s : scratch) s.in.resize(static_cast<std::size_t>(longest * kBlock)), s.out.resize(static_cast<std::size_t>(longest));
+  for (auto& s : scratch)
+    s.in.resize(static_cast<std::size_t>(longest * kBlock)), s.out.resize(static_cast<std::size_t>(longest));
 
   // Zeros stay zero and other values stay nonzero (with f >= 0 a sample's new value is at least the
   // smaller of its old value and 1), so where the nonzero samples lie is known from the start. The first
   // pass records it per block of kBlock neighbouring lines: the range of rows j (per plane k) and of
-  // planes k (per row j) holding a nonzero sample. The later passes gather only that range, widened by one sample: the zeros
-  // beyond it are nearer to that zero than to anything on the far side, which is what
-  // transform_any_line does with them anyway (it reads the whole line only to find them). A block
-  // without a nonzero sample is skipped. The result is the same to the last bit.
+  // planes k (per row j) holding a nonzero sample. The later passes gather only that range, widened by one sample: the
+  // zeros beyond it are nearer to that zero than to anything on the far side, which is what transform_any_line does
+  // with them anyway (it reads the whole line only to find them). A block without a nonzero sample is skipped. The
+  // result is the same to the last bit.
   const std::int64_t blocks_per_row = (nx + kBlock - 1) / kBlock;
   struct Extent {
     std::int32_t first = std::numeric_limits<std::int32_t>::max(), last = -1;
@@ -147,7 +149,8 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
     void add(const Extent& other) { first = std::min(first, other.first), last = std::max(last, other.last); }
   };
   std::vector<Extent> rows_of_block(static_cast<std::size_t>(nz * blocks_per_row));  // [k][block]: rows j
-  std::vector<std::vector<Extent>> planes_of_block(static_cast<std::size_t>(workers));  // per worker, [j][block]: planes k
+  std::vector<std::vector<Extent>> planes_of_block(
+      static_cast<std::size_t>(workers));  // per worker, [j][block]: planes k
   for (auto& p : planes_of_block) p.resize(static_cast<std::size_t>(ny * blocks_per_row));
 
   // Axis 0: contiguous rows, one chunk per plane k.
@@ -162,8 +165,10 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
       while (first < nx && s.in[first] == 0) ++first;
       if (first == nx) continue;  // all zero: nothing to do here or along the other axes
       while (s.in[last] == 0) --last;
-      for (std::int64_t b = first / kBlock; b <= last / kBlock; ++b) rows[b].add(j), planes[static_cast<std::size_t>(j * blocks_per_row + b)].add(k);
-      const auto [from, end] = transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.numerator, s.denominator, s.rooted);
+      for (std::int64_t b = first / kBlock; b <= last / kBlock; ++b)
+        rows[b].add(j), planes[static_cast<std::size_t>(j * blocks_per_row + b)].add(k);
+      const auto [from, end] =
+          transform_any_line(s.in.data(), s.out.data(), nx, s.v, s.numerator, s.denominator, s.rooted);
       for (std::int64_t q = from; q < end; ++q) row[q] = static_cast<T>(s.out[q]);
     }
   });
@@ -178,22 +183,30 @@ void squared_distance_transform_in_place(Grid3<T>& grid, int threads) {
       for (std::int64_t b = 0; b < blocks_per_row; ++b) {
         const Extent& nonzero = extent(outer, b);
         if (nonzero.last < 0) continue;
-        const std::int64_t lo = std::max<std::int64_t>(0, nonzero.first - 1), length = std::min<std::int64_t>(n - 1, nonzero.last + 1) - lo + 1;
+        const std::int64_t lo = std::max<std::int64_t>(0, nonzero.first - 1),
+                           length = std::min<std::int64_t>(n - 1, nonzero.last + 1) - lo + 1;
         const std::int64_t i0 = b * kBlock, width = std::min(kBlock, nx - i0);
         T* base = values + start_of(outer) + lo * stride + i0;
         for (std::int64_t q = 0; q < length; ++q)
           for (std::int64_t w = 0; w < width; ++w) s.in[w * length + q] = static_cast<double>(base[q * stride + w]);
         for (std::int64_t w = 0; w < width; ++w) {
-          const auto [first, end] = transform_any_line(s.in.data() + w * length, s.out.data(), length, s.v, s.numerator, s.denominator, s.rooted);
+          const auto [first, end] = transform_any_line(s.in.data() + w * length, s.out.data(), length, s.v, s.numerator,
+                                                       s.denominator, s.rooted);
           for (std::int64_t q = first; q < end; ++q) base[q * stride + w] = static_cast<T>(s.out[q]);
         }
       }
     });
   };
-  pass(ny, nx, nz, [&](std::int64_t k) { return k * plane; },
-       [&](std::int64_t k, std::int64_t b) -> const Extent& { return rows_of_block[static_cast<std::size_t>(k * blocks_per_row + b)]; });
-  pass(nz, plane, ny, [&](std::int64_t j) { return j * nx; },
-       [&](std::int64_t j, std::int64_t b) -> const Extent& { return planes_of[static_cast<std::size_t>(j * blocks_per_row + b)]; });
+  pass(
+      ny, nx, nz, [&](std::int64_t k) { return k * plane; },
+      [&](std::int64_t k, std::int64_t b) -> const Extent& {
+        return rows_of_block[static_cast<std::size_t>(k * blocks_per_row + b)];
+      });
+  pass(
+      nz, plane, ny, [&](std::int64_t j) { return j * nx; },
+      [&](std::int64_t j, std::int64_t b) -> const Extent& {
+        return planes_of[static_cast<std::size_t>(j * blocks_per_row + b)];
+      });
 }
 
 template void squared_distance_transform_in_place<double>(Grid3<double>&, int);

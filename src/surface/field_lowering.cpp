@@ -47,8 +47,8 @@ template <typename FloatVector, typename IntVector, int vectors>
     const FloatVector dx = m + s;
     const FloatVector value = a + dx * dx;
     const IntVector take = (value < old) & (m < end);
-    const FloatVector out =
-        reinterpret_cast<FloatVector>((reinterpret_cast<IntVector>(value) & take) | (reinterpret_cast<IntVector>(old) & ~take));
+    const FloatVector out = reinterpret_cast<FloatVector>((reinterpret_cast<IntVector>(value) & take) |
+                                                          (reinterpret_cast<IntVector>(old) & ~take));
     std::memcpy(values + kLanes * q, &out, sizeof out);
   }
 }
@@ -83,7 +83,8 @@ inline void lower_row_padded(double* values, std::int32_t, std::int32_t length, 
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = std::int32_t __attribute__((vector_size(32)));
 
-[[gnu::always_inline]] inline void lower_row_padded8(float* values, std::int32_t padded, std::int32_t length, float across, float start) {
+[[gnu::always_inline]] inline void lower_row_padded8(float* values, std::int32_t padded, std::int32_t length,
+                                                     float across, float start) {
   const Floats8 m = {0, 1, 2, 3, 4, 5, 6, 7};
   const auto last = static_cast<float>(length);
   const Floats8 end = {last, last, last, last, last, last, last, last};
@@ -101,8 +102,8 @@ using Ints8 = std::int32_t __attribute__((vector_size(32)));
 
 // A row of the ball that lower_near_centres lowers around a centre's nearest sample.
 struct BallRow {
-  double dj, first;                  // dj; the offset of the row's first sample along axis 0 (-half)
-  std::int64_t offset, segment_row;  // of the first sample in the field; of the row's segments
+  double dj, first;                            // dj; the offset of the row's first sample along axis 0 (-half)
+  std::int64_t offset, segment_row;            // of the first sample in the field; of the row's segments
   std::int32_t half, padded, padded8, length;  // padded: to a multiple of 4; padded8: of 8
 };
 
@@ -120,10 +121,10 @@ struct BallRow {
 // One centre away from the grid's border: its ball's rows in planes dk, dk + step, ... up to extent.
 template <typename T>
 struct InteriorBall {
-  T* centre_sample;                      // the centre's nearest sample
-  const std::uint8_t* centre_segments;   // the flags of its row
-  std::int64_t ci;                       // its index along axis 0
-  double fx, fy, fz;                     // centre - nearest sample (grid units)
+  T* centre_sample;                     // the centre's nearest sample
+  const std::uint8_t* centre_segments;  // the flags of its row
+  std::int64_t ci;                      // its index along axis 0
+  double fx, fy, fz;                    // centre - nearest sample (grid units)
   const BallRow* rows;
   const std::size_t* plane_rows;
   std::int64_t extent;
@@ -135,8 +136,10 @@ template <int kLanes>
   for (; dk <= ball.extent; dk += step) {
     const double z = static_cast<double>(dk) - ball.fz, z2 = z * z;
     const BallRow* end = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent + 1)];
-    for (const BallRow* row = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent)]; row != end; ++row) {
-      if (!any_open(ball.centre_segments + row->segment_row, ball.ci - row->half, ball.ci + row->half, ball.wide)) continue;
+    for (const BallRow* row = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent)]; row != end;
+         ++row) {
+      if (!any_open(ball.centre_segments + row->segment_row, ball.ci - row->half, ball.ci + row->half, ball.wide))
+        continue;
       const double y = row->dj - ball.fy;
       const auto across = static_cast<float>(z2 + y * y), start = static_cast<float>(row->first - ball.fx);
 #if defined(SPHEREMAP_LOWER_AVX2)
@@ -150,7 +153,9 @@ template <int kLanes>
   }
 }
 
-void lower_interior_four_lanes(const InteriorBall<float>& ball, std::int64_t dk, std::int64_t step) { lower_interior<4>(ball, dk, step); }
+void lower_interior_four_lanes(const InteriorBall<float>& ball, std::int64_t dk, std::int64_t step) {
+  lower_interior<4>(ball, dk, step);
+}
 #if defined(SPHEREMAP_LOWER_AVX2)
 [[gnu::target("avx2")]] void lower_interior_avx2(const InteriorBall<float>& ball, std::int64_t dk, std::int64_t step) {
   lower_interior<8>(ball, dk, step);
@@ -178,8 +183,9 @@ Ball ball_rows(const Grid3<T>& field, double reach, std::int64_t segments) {
       const double rest = reach * reach - static_cast<double>(dk * dk + dj * dj);
       if (rest < 0) continue;
       const auto half = static_cast<std::int32_t>(std::floor(std::sqrt(rest)));
-      ball.rows.push_back({static_cast<double>(dj), static_cast<double>(-half), dk * plane + dj * nx - half, (dk * ny + dj) * segments, half,
-                           (2 * half + 1 + 3) / 4 * 4, (2 * half + 1 + 7) / 8 * 8, 2 * half + 1});
+      ball.rows.push_back({static_cast<double>(dj), static_cast<double>(-half), dk * plane + dj * nx - half,
+                           (dk * ny + dj) * segments, half, (2 * half + 1 + 3) / 4 * 4, (2 * half + 1 + 7) / 8 * 8,
+                           2 * half + 1});
     }
   }
   ball.plane_rows.push_back(ball.rows.size());
@@ -196,7 +202,8 @@ std::vector<std::uint8_t> open_segments(const Grid3<T>& field, double settled, s
   std::vector<std::uint8_t> open(static_cast<std::size_t>(segments * ny * nz));
   const T limit = static_cast<T>(settled);
   static_assert(kSegment == sizeof(std::uint64_t));
-  std::vector<std::vector<std::uint8_t>> above(static_cast<std::size_t>(threads), std::vector<std::uint8_t>(static_cast<std::size_t>(segments * kSegment), 0));
+  std::vector<std::vector<std::uint8_t>> above(
+      static_cast<std::size_t>(threads), std::vector<std::uint8_t>(static_cast<std::size_t>(segments * kSegment), 0));
   parallel_chunks(nz, threads, [&](std::int64_t k, int worker) {
     std::uint8_t* over = above[static_cast<std::size_t>(worker)].data();
     for (std::int64_t j = 0; j < ny; ++j) {
@@ -218,8 +225,10 @@ void lower_interior_double(const InteriorBall<double>& ball, std::int64_t dk, st
   for (; dk <= ball.extent; dk += step) {
     const double z = static_cast<double>(dk) - ball.fz, z2 = z * z;
     const BallRow* end = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent + 1)];
-    for (const BallRow* row = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent)]; row != end; ++row) {
-      if (!any_open(ball.centre_segments + row->segment_row, ball.ci - row->half, ball.ci + row->half, ball.wide)) continue;
+    for (const BallRow* row = ball.rows + ball.plane_rows[static_cast<std::size_t>(dk + ball.extent)]; row != end;
+         ++row) {
+      if (!any_open(ball.centre_segments + row->segment_row, ball.ci - row->half, ball.ci + row->half, ball.wide))
+        continue;
       const double y = row->dj - ball.fy;
       lower_row_padded(ball.centre_sample + row->offset, row->padded, row->length, z2 + y * y, row->first - ball.fx);
     }
@@ -229,23 +238,25 @@ void lower_interior_double(const InteriorBall<double>& ball, std::int64_t dk, st
 // The ball of a centre near the border: each row clipped to the grid.
 template <typename T>
 void lower_at_border(Grid3<T>& field, const Ball& ball, const std::vector<std::uint8_t>& open, std::int64_t segments,
-                     std::int64_t ci, std::int64_t cj, std::int64_t ck, double fx, double fy, double fz, std::int64_t dk,
-                     std::int64_t step) {
+                     std::int64_t ci, std::int64_t cj, std::int64_t ck, double fx, double fy, double fz,
+                     std::int64_t dk, std::int64_t step) {
   const auto [nx, ny, nz] = field.size;
   const std::int64_t plane = nx * ny, extent = ball.extent;
   for (; dk <= extent; dk += step) {
     const std::int64_t k = ck + dk;
     if (k < 0 || k >= nz) continue;
     const double z = static_cast<double>(dk) - fz, z2 = z * z;
-    for (auto r = ball.plane_rows[static_cast<std::size_t>(dk + extent)]; r < ball.plane_rows[static_cast<std::size_t>(dk + extent + 1)]; ++r) {
+    for (auto r = ball.plane_rows[static_cast<std::size_t>(dk + extent)];
+         r < ball.plane_rows[static_cast<std::size_t>(dk + extent + 1)]; ++r) {
       const BallRow& row = ball.rows[r];
       const std::int64_t j = cj + static_cast<std::int64_t>(row.dj);
       if (j < 0 || j >= ny) continue;
-      const std::int64_t i0 = std::max<std::int64_t>(ci - row.half, 0), i1 = std::min<std::int64_t>(ci + row.half, nx - 1);
+      const std::int64_t i0 = std::max<std::int64_t>(ci - row.half, 0),
+                         i1 = std::min<std::int64_t>(ci + row.half, nx - 1);
       if (i0 > i1 || !any_open(open.data() + (k * ny + j) * segments, i0, i1, ball.wide)) continue;
       const double y = row.dj - fy;
-      lower_row(field.values.data() + k * plane + j * nx + i0, static_cast<std::int32_t>(i1 - i0 + 1), static_cast<T>(z2 + y * y),
-                static_cast<T>(static_cast<double>(i0 - ci) - fx));
+      lower_row(field.values.data() + k * plane + j * nx + i0, static_cast<std::int32_t>(i1 - i0 + 1),
+                static_cast<T>(z2 + y * y), static_cast<T>(static_cast<double>(i0 - ci) - fx));
     }
   }
 }
@@ -270,13 +281,23 @@ void lower_near_centres(Grid3<T>& field, const std::vector<Vec3>& centres, doubl
   parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
     for (const auto& c : centres) {
       const std::int64_t ci = round_to_int(c[0]), cj = round_to_int(c[1]), ck = round_to_int(c[2]);
-      const double fx = c[0] - static_cast<double>(ci), fy = c[1] - static_cast<double>(cj), fz = c[2] - static_cast<double>(ck);
+      const double fx = c[0] - static_cast<double>(ci), fy = c[1] - static_cast<double>(cj),
+                   fz = c[2] - static_cast<double>(ck);
       std::int64_t dk = -extent;
       dk += (((chunk - (ck + dk)) % threads) + threads) % threads;
       // Away from the border (the padded rows included), no row needs clipping.
-      if (ci - extent >= 0 && cj - extent >= 0 && ck - extent >= 0 && ci + extent + 7 < nx && cj + extent < ny && ck + extent < nz) {
-        const InteriorBall<T> interior{field.values.data() + ck * plane + cj * nx + ci, open.data() + (ck * ny + cj) * segments, ci,
-                                         fx, fy, fz, ball.rows.data(), ball.plane_rows.data(), extent, ball.wide};
+      if (ci - extent >= 0 && cj - extent >= 0 && ck - extent >= 0 && ci + extent + 7 < nx && cj + extent < ny &&
+          ck + extent < nz) {
+        const InteriorBall<T> interior{field.values.data() + ck * plane + cj * nx + ci,
+                                       open.data() + (ck * ny + cj) * segments,
+                                       ci,
+                                       fx,
+                                       fy,
+                                       fz,
+                                       ball.rows.data(),
+                                       ball.plane_rows.data(),
+                                       extent,
+                                       ball.wide};
         if constexpr (std::is_same_v<T, float>) {
           lower_interior_rows(interior, dk, threads);
         } else {

@@ -7,9 +7,9 @@
 #include <limits>
 #include <utility>
 
-#include "atom_grid.hpp"
 #include "../util/parallel.hpp"
 #include "../util/rounding.hpp"
+#include "atom_grid.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
 
@@ -57,8 +57,8 @@ struct Candidate {
 // the box [lo, hi]: the atoms whose sphere comes within `bound` of the box, where bound is the smallest,
 // over atoms, of the farthest distance from the box to their sphere (so the nearest sphere of any point
 // of the box is within it). The set does not depend on the order atoms are visited in.
-void box_candidates(const AtomGrid& grid, const std::vector<Atom>& atoms, double largest_radius, const Vec3& lo, const Vec3& hi,
-                    std::vector<Candidate>& out) {
+void box_candidates(const AtomGrid& grid, const std::vector<Atom>& atoms, double largest_radius, const Vec3& lo,
+                    const Vec3& hi, std::vector<Candidate>& out) {
   const Vec3 middle = 0.5 * (lo + hi);
   const std::int32_t first = grid.nearest_sphere(middle, largest_radius, grid.some_atom_near(middle), atoms);
   const Atom& closest = atoms[static_cast<std::size_t>(first)];
@@ -77,7 +77,8 @@ void box_candidates(const AtomGrid& grid, const std::vector<Atom>& atoms, double
   });
   // An atom visited later may have lowered the bound below what let earlier ones in.
   const auto first_kept = out.begin() + static_cast<std::ptrdiff_t>(begin);
-  out.erase(std::remove_if(first_kept, out.end(), [&](const Candidate& c) { return c.least_gap > bound + kSlack; }), out.end());
+  out.erase(std::remove_if(first_kept, out.end(), [&](const Candidate& c) { return c.least_gap > bound + kSlack; }),
+            out.end());
   // Most likely first, so that a vertex can stop early (ties by index: the order is deterministic).
   std::sort(first_kept, out.end(), [](const Candidate& a, const Candidate& b) {
     return a.least_gap < b.least_gap || (a.least_gap == b.least_gap && a.sphere.index < b.sphere.index);
@@ -86,7 +87,8 @@ void box_candidates(const AtomGrid& grid, const std::vector<Atom>& atoms, double
 
 // box_candidates for a box inside a larger one, from the larger one's candidates (a superset: the best
 // bound of the small box is at most the large one's, and its atoms come at least as near the large box).
-void sub_box_candidates(const std::vector<Candidate>& outer, const Vec3& lo, const Vec3& hi, std::vector<Candidate>& out) {
+void sub_box_candidates(const std::vector<Candidate>& outer, const Vec3& lo, const Vec3& hi,
+                        std::vector<Candidate>& out) {
   double bound = std::numeric_limits<double>::infinity();
   for (const Candidate& c : outer) bound = std::min(bound, farthest_in_box(lo, hi, c.sphere.centre) - c.sphere.radius);
   const std::size_t begin = out.size();
@@ -111,18 +113,22 @@ struct VertexCells {
       for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
     for (;;) {
       for (int d = 0; d < 3; ++d) cells[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / side)) + 1;
-      if (static_cast<double>(cells[0]) * static_cast<double>(cells[1]) * static_cast<double>(cells[2]) <= kMaximumCells) break;
+      if (static_cast<double>(cells[0]) * static_cast<double>(cells[1]) * static_cast<double>(cells[2]) <=
+          kMaximumCells)
+        break;
       side *= 2;
     }
   }
   [[nodiscard]] std::int64_t count() const { return cells[0] * cells[1] * cells[2]; }
   [[nodiscard]] std::int64_t cell_of(const Vec3& p) const {
     std::int64_t c[3];
-    for (int d = 0; d < 3; ++d) c[d] = std::clamp<std::int64_t>(detail::floor_to_int((p[d] - lo[d]) / side), 0, cells[d] - 1);
+    for (int d = 0; d < 3; ++d)
+      c[d] = std::clamp<std::int64_t>(detail::floor_to_int((p[d] - lo[d]) / side), 0, cells[d] - 1);
     return c[0] + cells[0] * (c[1] + cells[1] * c[2]);
   }
   // The box of cell c of a grid of cells of `box_side` with `per_row` x `per_plane` cells per plane.
-  [[nodiscard]] std::pair<Vec3, Vec3> box_of(std::int64_t c, double box_side, std::int64_t per_row, std::int64_t per_plane) const {
+  [[nodiscard]] std::pair<Vec3, Vec3> box_of(std::int64_t c, double box_side, std::int64_t per_row,
+                                             std::int64_t per_plane) const {
     const std::int64_t index[3] = {c % per_row, (c / per_row) % per_plane, c / (per_row * per_plane)};
     std::pair<Vec3, Vec3> box;
     for (int d = 0; d < 3; ++d) {
@@ -146,12 +152,15 @@ UsedCells used_cells(const std::vector<Vec3>& positions, const VertexCells& cell
   UsedCells result;
   auto& slot = result.slot;
   slot.assign(static_cast<std::size_t>(cells.count()), -1);
-  detail::parallel_ranges(static_cast<std::int64_t>(positions.size()), kVerticesPerChunk, threads, [&](std::int64_t first, std::int64_t end) {
-    for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v)
-      std::atomic_ref<std::int32_t>(slot[static_cast<std::size_t>(cells.cell_of(positions[v]))]).store(0, std::memory_order_relaxed);
-  });
+  detail::parallel_ranges(static_cast<std::int64_t>(positions.size()), kVerticesPerChunk, threads,
+                          [&](std::int64_t first, std::int64_t end) {
+                            for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v)
+                              std::atomic_ref<std::int32_t>(slot[static_cast<std::size_t>(cells.cell_of(positions[v]))])
+                                  .store(0, std::memory_order_relaxed);
+                          });
   for (std::size_t c = 0; c < slot.size(); ++c)
-    if (slot[c] == 0) slot[c] = static_cast<std::int32_t>(result.used.size()), result.used.push_back(static_cast<std::int64_t>(c));
+    if (slot[c] == 0)
+      slot[c] = static_cast<std::int32_t>(result.used.size()), result.used.push_back(static_cast<std::int64_t>(c));
   return result;
 }
 
@@ -168,7 +177,8 @@ CellCandidates cell_candidates(const AtomGrid& grid, const std::vector<Atom>& at
   const std::int64_t parent_row = (cells.cells[0] + 1) / 2, parent_plane = (cells.cells[1] + 1) / 2;
   std::vector<std::pair<std::int64_t, std::uint32_t>> by_parent(used.size());  // parent, child rank
   for (std::size_t u = 0; u < used.size(); ++u) {
-    const std::int64_t c = used[u], x = c % cells.cells[0], y = (c / cells.cells[0]) % cells.cells[1], z = c / (cells.cells[0] * cells.cells[1]);
+    const std::int64_t c = used[u], x = c % cells.cells[0], y = (c / cells.cells[0]) % cells.cells[1],
+                       z = c / (cells.cells[0] * cells.cells[1]);
     by_parent[u] = {x / 2 + parent_row * (y / 2 + parent_plane * (z / 2)), static_cast<std::uint32_t>(u)};
   }
   std::sort(by_parent.begin(), by_parent.end());
@@ -189,7 +199,8 @@ CellCandidates cell_candidates(const AtomGrid& grid, const std::vector<Atom>& at
     auto& out = chunk_candidates[static_cast<std::size_t>(chunk)];
     std::vector<Candidate> parent;
     for (std::int64_t g = chunk * kGroupsPerChunk; g < std::min(groups, (chunk + 1) * kGroupsPerChunk); ++g) {
-      const auto [parent_lo, parent_hi] = cells.box_of(by_parent[group_start[static_cast<std::size_t>(g)]].first, 2 * cells.side, parent_row, parent_plane);
+      const auto [parent_lo, parent_hi] = cells.box_of(by_parent[group_start[static_cast<std::size_t>(g)]].first,
+                                                       2 * cells.side, parent_row, parent_plane);
       parent.clear();
       box_candidates(grid, atoms, largest_radius, parent_lo, parent_hi, parent);
       for (auto m = group_start[static_cast<std::size_t>(g)]; m < group_start[static_cast<std::size_t>(g) + 1]; ++m) {
@@ -204,7 +215,9 @@ CellCandidates cell_candidates(const AtomGrid& grid, const std::vector<Atom>& at
   });
   std::vector<std::int64_t> chunk_offset(static_cast<std::size_t>(group_chunks) + 1, 0);
   for (std::int64_t c = 0; c < group_chunks; ++c)
-    chunk_offset[static_cast<std::size_t>(c) + 1] = chunk_offset[static_cast<std::size_t>(c)] + static_cast<std::int64_t>(chunk_candidates[static_cast<std::size_t>(c)].size());
+    chunk_offset[static_cast<std::size_t>(c) + 1] =
+        chunk_offset[static_cast<std::size_t>(c)] +
+        static_cast<std::int64_t>(chunk_candidates[static_cast<std::size_t>(c)].size());
   for (std::size_t u = 0; u < used.size(); ++u) {
     const std::int64_t offset = chunk_offset[static_cast<std::size_t>(chunk_of_child[u])];
     candidate_begin[u] += offset, candidate_end[u] += offset;
@@ -220,23 +233,25 @@ CellCandidates cell_candidates(const AtomGrid& grid, const std::vector<Atom>& at
 std::vector<std::int32_t> nearest_atom_indices(const std::vector<Vec3>& positions, const VertexCells& cells,
                                                const UsedCells& used, const CellCandidates& candidates, int threads) {
   std::vector<std::int32_t> atom_index(positions.size());
-  detail::parallel_ranges(static_cast<std::int64_t>(positions.size()), kVerticesPerChunk, threads, [&](std::int64_t first, std::int64_t end) {
-    for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v) {
-      const Vec3& p = positions[v];
-      const auto u = static_cast<std::size_t>(used.slot[static_cast<std::size_t>(cells.cell_of(p))]);
-      double best = std::numeric_limits<double>::infinity();
-      std::int32_t chosen = -1;
-      for (auto m = candidates.begin[u]; m < candidates.end[u]; ++m) {
-        const Candidate& c = candidates.candidates[static_cast<std::size_t>(m)];
-        // The rest cannot come nearer (nor tie: the slack keeps rounding on the safe side).
-        if (c.least_gap > best + kSlack) break;
-        const Sphere& s = c.sphere;
-        const double gap = norm(p - s.centre) - s.radius;
-        if (gap < best || (gap == best && s.index < chosen)) best = gap, chosen = s.index;
-      }
-      atom_index[v] = chosen;
-    }
-  });
+  detail::parallel_ranges(static_cast<std::int64_t>(positions.size()), kVerticesPerChunk, threads,
+                          [&](std::int64_t first, std::int64_t end) {
+                            for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v) {
+                              const Vec3& p = positions[v];
+                              const auto u =
+                                  static_cast<std::size_t>(used.slot[static_cast<std::size_t>(cells.cell_of(p))]);
+                              double best = std::numeric_limits<double>::infinity();
+                              std::int32_t chosen = -1;
+                              for (auto m = candidates.begin[u]; m < candidates.end[u]; ++m) {
+                                const Candidate& c = candidates.candidates[static_cast<std::size_t>(m)];
+                                // The rest cannot come nearer (nor tie: the slack keeps rounding on the safe side).
+                                if (c.least_gap > best + kSlack) break;
+                                const Sphere& s = c.sphere;
+                                const double gap = norm(p - s.centre) - s.radius;
+                                if (gap < best || (gap == best && s.index < chosen)) best = gap, chosen = s.index;
+                              }
+                              atom_index[v] = chosen;
+                            }
+                          });
   return atom_index;
 }
 
@@ -255,14 +270,15 @@ void add_nearest_atoms(Mesh& mesh, const std::vector<Atom>& atoms, const Surface
     const UsedCells used = used_cells(mesh.positions, cells, threads);
     const CellCandidates candidates = cell_candidates(grid, atoms, largest_radius, cells, used.used, threads);
     atom_index = nearest_atom_indices(mesh.positions, cells, used, candidates, threads);
-    detail::parallel_ranges(static_cast<std::int64_t>(n), kVerticesPerChunk, threads, [&](std::int64_t first, std::int64_t end) {
-      for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v) {
-        const Atom& atom = atoms[static_cast<std::size_t>(atom_index[v])];
-        serial[v] = atom.serial;
-        residue[v] = atom.residue_number;
-        model[v] = atom.model;
-      }
-    });
+    detail::parallel_ranges(static_cast<std::int64_t>(n), kVerticesPerChunk, threads,
+                            [&](std::int64_t first, std::int64_t end) {
+                              for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(end); ++v) {
+                                const Atom& atom = atoms[static_cast<std::size_t>(atom_index[v])];
+                                serial[v] = atom.serial;
+                                residue[v] = atom.residue_number;
+                                model[v] = atom.model;
+                              }
+                            });
   }
   mesh.integer_attributes[attributes::kAtomId] = std::move(atom_index);
   mesh.integer_attributes[attributes::kAtomSerial] = std::move(serial);

@@ -8,12 +8,12 @@
 #include <numbers>
 #include <utility>
 
-#include "atom_grid.hpp"
-#include "circle_cover.hpp"
-#include "spheremap/geometry/vec.hpp"
 #include "../util/parallel.hpp"
 #include "../util/rounding.hpp"
 #include "../util/union_find.hpp"
+#include "atom_grid.hpp"
+#include "circle_cover.hpp"
+#include "spheremap/geometry/vec.hpp"
 
 namespace spheremap::detail {
 namespace {
@@ -34,7 +34,10 @@ struct SasAtoms {
   std::vector<std::int32_t> neighbours;
 
   SasAtoms(const std::vector<Atom>& atoms_in, double probe)
-      : atoms(atoms_in), reach(atoms_in.size()), reach2(atoms_in.size()), largest_reach(largest(atoms_in, probe)),
+      : atoms(atoms_in),
+        reach(atoms_in.size()),
+        reach2(atoms_in.size()),
+        largest_reach(largest(atoms_in, probe)),
         grid(atoms_in, largest_reach) {
     for (std::size_t a = 0; a < atoms.size(); ++a) {
       reach[a] = atoms[a].radius + probe;
@@ -43,7 +46,9 @@ struct SasAtoms {
   }
   [[nodiscard]] std::int32_t count() const { return static_cast<std::int32_t>(atoms.size()); }
   [[nodiscard]] std::int64_t chunks() const { return (count() + kAtomsPerChunk - 1) / kAtomsPerChunk; }
-  [[nodiscard]] std::int32_t chunk_first(std::int64_t chunk) const { return static_cast<std::int32_t>(chunk) * kAtomsPerChunk; }
+  [[nodiscard]] std::int32_t chunk_first(std::int64_t chunk) const {
+    return static_cast<std::int32_t>(chunk) * kAtomsPerChunk;
+  }
   [[nodiscard]] std::int32_t chunk_end(std::int64_t chunk) const {
     return std::min(count(), static_cast<std::int32_t>(chunk + 1) * kAtomsPerChunk);
   }
@@ -131,7 +136,8 @@ struct VertexKey {
   auto operator<=>(const VertexKey&) const = default;
 };
 
-VertexKey vertex_key(const std::vector<Atom>& atoms, std::int32_t a, std::int32_t b, std::int32_t c, const Vec3& point) {
+VertexKey vertex_key(const std::vector<Atom>& atoms, std::int32_t a, std::int32_t b, std::int32_t c,
+                     const Vec3& point) {
   VertexKey key{a, b, c, 0};
   std::sort(key.atoms.begin(), key.atoms.end());
   const Vec3& o = atoms[key.atoms[0]].position;
@@ -142,18 +148,20 @@ VertexKey vertex_key(const std::vector<Atom>& atoms, std::int32_t a, std::int32_
 // The exposed arcs of one chunk of atoms (circles (i, j) with i < j, by i then j; arcs by angle).
 struct ChunkArcs {
   std::int64_t arcs = 0;
-  std::vector<Vec3> samples, vertices;  // grid units; the vertices (touching three atoms) once each
-  std::vector<std::int32_t> sample_arc, vertex_arc;  // local arc index
+  std::vector<Vec3> samples, vertices;                   // grid units; the vertices (touching three atoms) once each
+  std::vector<std::int32_t> sample_arc, vertex_arc;      // local arc index
   std::vector<std::pair<VertexKey, std::int32_t>> ends;  // local arc
   std::vector<std::pair<std::int32_t, std::int64_t>> links;  // local arc, label (0 outside, p pocket)
-  std::vector<std::int32_t> circled, exposed;  // atoms with a circle; atoms with an exposed arc
+  std::vector<std::int32_t> circled, exposed;                // atoms with a circle; atoms with an exposed arc
 };
 
 // The circle where the enlarged spheres of two atoms meet: centre + radius (cos θ u + sin θ v).
 struct Circle {
   Vec3 centre, unit_axis, u, v;
   double radius;
-  [[nodiscard]] Vec3 point_at(double angle) const { return centre + radius * (std::cos(angle) * u + std::sin(angle) * v); }
+  [[nodiscard]] Vec3 point_at(double angle) const {
+    return centre + radius * (std::cos(angle) * u + std::sin(angle) * v);
+  }
 };
 
 // The exposed arcs of every circle of one chunk's atoms, with the scratch space of one worker.
@@ -391,7 +399,8 @@ Carving resolve_pockets(Grid3<T>& field, const Pockets& pockets, const std::vect
   Carving carving;
   carving.arc_start.assign(static_cast<std::size_t>(chunks) + 1, 0);
   for (std::int64_t c = 0; c < chunks; ++c)
-    carving.arc_start[static_cast<std::size_t>(c) + 1] = carving.arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
+    carving.arc_start[static_cast<std::size_t>(c) + 1] =
+        carving.arc_start[static_cast<std::size_t>(c)] + chunk_arcs[static_cast<std::size_t>(c)].arcs;
   const std::int64_t first_arc = carving.first_arc = 1 + pockets.count;
   UnionFind<std::int64_t> components(static_cast<std::size_t>(first_arc + carving.arc_start.back()));
   std::vector<std::pair<VertexKey, std::int64_t>> ends;
@@ -408,7 +417,8 @@ Carving resolve_pockets(Grid3<T>& field, const Pockets& pockets, const std::vect
   carves.assign(static_cast<std::size_t>(first_arc + carving.arc_start.back()), 0);
   std::vector<std::uint8_t> root_carves(carves.size(), 0);
   if (carve_cavities)
-    for (std::int64_t label = 0; label < first_arc; ++label) root_carves[static_cast<std::size_t>(components.find(label))] = 1;
+    for (std::int64_t label = 0; label < first_arc; ++label)
+      root_carves[static_cast<std::size_t>(components.find(label))] = 1;
   for (std::size_t node = 0; node < carves.size(); ++node) {
     const std::int64_t root = components.find(static_cast<std::int64_t>(node));
     carves[node] = root == 0 || root_carves[static_cast<std::size_t>(root)];
@@ -440,8 +450,13 @@ class RadialProjections {
       coverers_.push_back({sas_.atoms[other].position, sas_.reach2[other]});
     }
     const double outer = sas_.reach[index], inner = outer - h;
-    const auto first = [&](int d) { return std::max<std::int64_t>(0, ceil_to_int((atom.position[d] - outer - field_.origin[d]) / h)); };
-    const auto last = [&](int d) { return std::min<std::int64_t>(field_.size[d] - 1, floor_to_int((atom.position[d] + outer - field_.origin[d]) / h)); };
+    const auto first = [&](int d) {
+      return std::max<std::int64_t>(0, ceil_to_int((atom.position[d] - outer - field_.origin[d]) / h));
+    };
+    const auto last = [&](int d) {
+      return std::min<std::int64_t>(field_.size[d] - 1,
+                                    floor_to_int((atom.position[d] + outer - field_.origin[d]) / h));
+    };
     for (std::int64_t k = first(2); k <= last(2); ++k)
       for (std::int64_t j = first(1); j <= last(1); ++j) {
         const Vec3 row = field_.point(0, j, k);
@@ -545,7 +560,8 @@ std::uint64_t block_key(const Vec3& c) {
 // the memory budget stops far sooner).
 std::vector<Vec3> sort_by_block(const std::vector<std::vector<Vec3>>& chunk_centres, int threads) {
   std::vector<std::int64_t> part_start(chunk_centres.size() + 1, 0);
-  for (std::size_t c = 0; c < chunk_centres.size(); ++c) part_start[c + 1] = part_start[c] + static_cast<std::int64_t>(chunk_centres[c].size());
+  for (std::size_t c = 0; c < chunk_centres.size(); ++c)
+    part_start[c + 1] = part_start[c] + static_cast<std::int64_t>(chunk_centres[c].size());
   const auto total = static_cast<std::size_t>(part_start.back());
   std::vector<std::uint64_t> order(total), next(total);
   std::vector<std::uint64_t> part_largest(chunk_centres.size(), 0);
@@ -578,7 +594,8 @@ std::vector<Vec3> sort_by_block(const std::vector<std::vector<Vec3>>& chunk_cent
     const std::size_t to = total * static_cast<std::size_t>(chunk + 1) / static_cast<std::size_t>(threads);
     for (std::size_t c = from; c < to; ++c) {
       const auto index = static_cast<std::int64_t>(order[c] & 0xffffffffu);
-      const auto part = static_cast<std::size_t>(std::upper_bound(part_start.begin(), part_start.end(), index) - part_start.begin() - 1);
+      const auto part = static_cast<std::size_t>(std::upper_bound(part_start.begin(), part_start.end(), index) -
+                                                 part_start.begin() - 1);
       sorted[c] = chunk_centres[part][static_cast<std::size_t>(index - part_start[part])];
     }
   });
@@ -606,7 +623,7 @@ std::vector<Vec3> surface_probe_centres(Grid3<T>& field, const std::vector<Atom>
 
 template std::vector<Vec3> surface_probe_centres<double>(Grid3<double>&, const std::vector<Atom>&, double,
                                                          const Pockets&, bool, int, StageTimer&);
-template std::vector<Vec3> surface_probe_centres<float>(Grid3<float>&, const std::vector<Atom>&, double,
-                                                        const Pockets&, bool, int, StageTimer&);
+template std::vector<Vec3> surface_probe_centres<float>(Grid3<float>&, const std::vector<Atom>&, double, const Pockets&,
+                                                        bool, int, StageTimer&);
 
 }  // namespace spheremap::detail

@@ -5,10 +5,10 @@
 
 #include <vector>
 
+#include "../util/stage_timer.hpp"
 #include "pockets.hpp"
 #include "spheremap/molecule/structure.hpp"
 #include "spheremap/surface/grid.hpp"
-#include "../util/stage_timer.hpp"
 
 namespace spheremap::detail {
 

@@ -15,7 +15,9 @@ namespace {
 // Vertices come from few atoms (each atom's code is looked up once, then reused).
 class TextColumn {
  public:
-  explicit TextColumn(std::size_t atoms, std::size_t vertices) : code_of_atom_(atoms, -1) { attribute_.codes.reserve(vertices); }
+  explicit TextColumn(std::size_t atoms, std::size_t vertices) : code_of_atom_(atoms, -1) {
+    attribute_.codes.reserve(vertices);
+  }
   // value_of(): the atom's text, asked for once per atom.
   template <typename Value>
   void push(std::size_t atom, Value&& value_of) {
@@ -40,14 +42,16 @@ class TextColumn {
 
 void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
   const auto found = mesh.integer_attributes.find(attributes::kAtomId);
-  if (found == mesh.integer_attributes.end()) throw std::invalid_argument("add_atom_provenance: the mesh has no 'atomid' attribute");
+  if (found == mesh.integer_attributes.end())
+    throw std::invalid_argument("add_atom_provenance: the mesh has no 'atomid' attribute");
   const auto& atom_of = found->second;
   std::vector<std::int32_t> serial, residue_number, model;
   serial.reserve(atom_of.size());
   residue_number.reserve(atom_of.size());
   model.reserve(atom_of.size());
-  TextColumn name(atoms.size(), atom_of.size()), element(atoms.size(), atom_of.size()), residue_name(atoms.size(), atom_of.size()),
-      insertion_code(atoms.size(), atom_of.size()), chain(atoms.size(), atom_of.size());
+  TextColumn name(atoms.size(), atom_of.size()), element(atoms.size(), atom_of.size()),
+      residue_name(atoms.size(), atom_of.size()), insertion_code(atoms.size(), atom_of.size()),
+      chain(atoms.size(), atom_of.size());
   for (const std::int32_t index : atom_of) {
     if (index < 0 || static_cast<std::size_t>(index) >= atoms.size())
       throw std::invalid_argument("add_atom_provenance: an 'atomid' is not an index into the atoms");
@@ -59,7 +63,8 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
     name.push(a, [&] { return atom.name; });
     element.push(a, [&] { return atom.element; });
     residue_name.push(a, [&] { return atom.residue_name; });
-    insertion_code.push(a, [&] { return atom.insertion_code == ' ' ? std::string() : std::string(1, atom.insertion_code); });
+    insertion_code.push(
+        a, [&] { return atom.insertion_code == ' ' ? std::string() : std::string(1, atom.insertion_code); });
     chain.push(a, [&] { return atom.chain; });
   }
   mesh.integer_attributes[attributes::kAtomSerial] = std::move(serial);
@@ -73,7 +78,8 @@ void add_atom_provenance(Mesh& mesh, const std::vector<Atom>& atoms) {
   // Per-atom values the file has (every atom of a PDB or mmCIF file has a B-factor, every atom of a PQR
   // file a charge): written only then, never as made-up zeros.
   auto per_vertex = [&](const char* attribute, std::optional<double> Atom::*value) {
-    const bool present = !atoms.empty() && std::all_of(atoms.begin(), atoms.end(), [&](const Atom& a) { return (a.*value).has_value(); });
+    const bool present = !atoms.empty() &&
+                         std::all_of(atoms.begin(), atoms.end(), [&](const Atom& a) { return (a.*value).has_value(); });
     if (!present) {
       mesh.real_attributes.erase(attribute);
       return;

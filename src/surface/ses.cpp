@@ -5,6 +5,9 @@
 
 #include <fmt/format.h>
 
+#include "../util/parallel.hpp"
+#include "../util/rounding.hpp"
+#include "../util/stage_timer.hpp"
 #include "field_lowering.hpp"
 #include "pockets.hpp"
 #include "probe_centres.hpp"
@@ -13,9 +16,6 @@
 #include "spheremap/surface/contour.hpp"
 #include "spheremap/surface/distance_transform.hpp"
 #include "spheremap/surface/nearest_atoms.hpp"
-#include "../util/parallel.hpp"
-#include "../util/rounding.hpp"
-#include "../util/stage_timer.hpp"
 
 namespace spheremap {
 namespace {
@@ -30,7 +30,8 @@ Grid3<T> grid_around(const std::vector<Atom>& atoms, const SurfaceOptions& optio
   double largest_radius = 0;
   Vec3 lo = atoms.front().position, hi = lo;
   for (const auto& a : atoms) {
-    if (!(a.radius > 0)) throw InputError(fmt::format("atom {} ({}) has radius {}; radii must be positive", a.serial, a.name, a.radius));
+    if (!(a.radius > 0))
+      throw InputError(fmt::format("atom {} ({}) has radius {}; radii must be positive", a.serial, a.name, a.radius));
     largest_radius = std::max(largest_radius, a.radius);
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], a.position[d]), hi[d] = std::max(hi[d], a.position[d]);
   }
@@ -43,14 +44,17 @@ Grid3<T> grid_around(const std::vector<Atom>& atoms, const SurfaceOptions& optio
   }
   // The field is the only per-sample array (built in place); the surface probe centres (24 bytes each)
   // and the atom lists are small beside it.
-  const double samples = static_cast<double>(field.size[0]) * static_cast<double>(field.size[1]) * static_cast<double>(field.size[2]);
+  const double samples =
+      static_cast<double>(field.size[0]) * static_cast<double>(field.size[1]) * static_cast<double>(field.size[2]);
   const double per_sample = static_cast<double>(sizeof(T)) + options.extra_bytes_per_sample;
   const double bytes = samples * per_sample;
   if (bytes > options.max_grid_bytes) {
     const double fitting = h * std::cbrt(bytes / options.max_grid_bytes) * 1.01;
-    throw InputError(fmt::format("a {} x {} x {} grid at {} Å would need {:.1f} GB ({:g} bytes per sample; budget {:.1f} GB); use --grid {:.2f} or coarser",
-                                 field.size[0], field.size[1], field.size[2], h, bytes / 1e9, per_sample, options.max_grid_bytes / 1e9,
-                                 std::ceil(fitting * 100) / 100));
+    throw InputError(
+        fmt::format("a {} x {} x {} grid at {} Å would need {:.1f} GB ({:g} bytes per sample; budget {:.1f} GB); use "
+                    "--grid {:.2f} or coarser",
+                    field.size[0], field.size[1], field.size[2], h, bytes / 1e9, per_sample,
+                    options.max_grid_bytes / 1e9, std::ceil(fitting * 100) / 100));
   }
   return field;
 }
@@ -75,7 +79,8 @@ void distances_to_field(Grid3<T>& field, double probe, int threads) {
         std::fill_n(run, length, at_centre);
         continue;
       }
-      for (std::int64_t s = 0; s < length; ++s) run[s] = static_cast<T>(std::sqrt(static_cast<double>(run[s])) * h - probe);
+      for (std::int64_t s = 0; s < length; ++s)
+        run[s] = static_cast<T>(std::sqrt(static_cast<double>(run[s])) * h - probe);
     }
   });
 }

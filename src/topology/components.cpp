@@ -4,8 +4,8 @@
 #include <numeric>
 #include <utility>
 
-#include "spheremap/geometry/vec.hpp"
 #include "../util/union_find.hpp"
+#include "spheremap/geometry/vec.hpp"
 
 namespace spheremap {
 

@@ -77,19 +77,25 @@ VertexRings build_vertex_rings(std::int32_t vertex_count, const std::vector<Tria
   for (std::int32_t v = 0; v < vertex_count; ++v) {
     const auto begin = start[v], end = start[v + 1];
     const auto degree = end - begin;
-    if (degree < 3) throw std::invalid_argument("build_vertex_rings: vertex " + std::to_string(v) + " has fewer than 3 triangles");
+    if (degree < 3)
+      throw std::invalid_argument("build_vertex_rings: vertex " + std::to_string(v) + " has fewer than 3 triangles");
     // Degrees are small: a linear scan per step is faster than any map.
     std::int32_t current = from[begin];
     for (std::int64_t k = 0; k < degree; ++k) {
       rings.neighbors[begin + k] = current;
       std::int64_t slot = begin;
       while (slot < end && from[slot] != current) ++slot;
-      if (slot == end) throw std::invalid_argument("build_vertex_rings: the triangles around vertex " + std::to_string(v) + " do not form a closed fan");
+      if (slot == end)
+        throw std::invalid_argument("build_vertex_rings: the triangles around vertex " + std::to_string(v) +
+                                    " do not form a closed fan");
       current = to[slot];
       if (k + 1 < degree && current == from[begin])
-        throw std::invalid_argument("build_vertex_rings: the triangles around vertex " + std::to_string(v) + " form more than one fan");
+        throw std::invalid_argument("build_vertex_rings: the triangles around vertex " + std::to_string(v) +
+                                    " form more than one fan");
     }
-    if (current != from[begin]) throw std::invalid_argument("build_vertex_rings: the triangles around vertex " + std::to_string(v) + " do not form a single fan");
+    if (current != from[begin])
+      throw std::invalid_argument("build_vertex_rings: the triangles around vertex " + std::to_string(v) +
+                                  " do not form a single fan");
   }
   return rings;
 }

@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
+#include "../util/union_find.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "../util/union_find.hpp"
 
 namespace spheremap {
 namespace {
@@ -36,9 +36,10 @@ std::vector<std::int32_t> weld_representatives(const std::vector<Vec3>& position
   double largest = 0;
   for (const auto& p : positions) largest = std::max({largest, std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
   if (largest / tolerance > 1e15)
-    throw InputError(fmt::format("weld tolerance {} is too small for coordinates as large as {} (below double "
-                                 "precision); use 0 to weld exactly coincident vertices",
-                                 tolerance, largest));
+    throw InputError(
+        fmt::format("weld tolerance {} is too small for coordinates as large as {} (below double "
+                    "precision); use 0 to weld exactly coincident vertices",
+                    tolerance, largest));
   // Grid hashing with cells of the tolerance: welded pairs lie in the same or adjacent cells.
   auto cell_of = [&](const Vec3& p) {
     return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(p[0] / tolerance)),
@@ -93,9 +94,8 @@ std::vector<EdgeIncidence> group_edges(std::int32_t vertex_count, const std::vec
     }
   }
   for (std::int32_t v = 0; v < vertex_count; ++v) {
-    std::sort(edges.begin() + start[v], edges.begin() + start[v + 1], [](const auto& x, const auto& y) {
-      return x.high != y.high ? x.high < y.high : x.face < y.face;
-    });
+    std::sort(edges.begin() + start[v], edges.begin() + start[v + 1],
+              [](const auto& x, const auto& y) { return x.high != y.high ? x.high < y.high : x.face < y.face; });
   }
   return edges;
 }
@@ -107,13 +107,15 @@ std::string plural(std::int64_t n, const char* singular, const char* many) {
 // Every face index in range and every coordinate finite; throws InputError naming the first that is not.
 template <typename Faces>
 void check_input(const std::vector<Vec3>& positions, const Faces& faces, const std::string& name) {
-  if (faces.empty()) throw InputError(fmt::format("{}: the file has no faces; spheremap needs a closed triangle mesh", name));
+  if (faces.empty())
+    throw InputError(fmt::format("{}: the file has no faces; spheremap needs a closed triangle mesh", name));
   const auto input_count = static_cast<std::int32_t>(positions.size());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     for (auto index : faces[f]) {
       if (index < 0 || index >= input_count)
-        throw InputError(fmt::format("{}: face {} refers to vertex {}, but there are only {} vertices; the file is corrupt",
-                                     name, f, index, input_count));
+        throw InputError(
+            fmt::format("{}: face {} refers to vertex {}, but there are only {} vertices; the file is corrupt", name, f,
+                        index, input_count));
     }
   }
   for (std::int32_t i = 0; i < input_count; ++i) {
@@ -156,7 +158,8 @@ std::vector<Triangle> triangulate(const Faces& faces, const std::vector<std::int
       for (std::size_t start = 0; start < corners; ++start) {
         bool free = true;
         for (std::size_t k = 2; k + 1 < corners && free; ++k)
-          free = !edges_in_use.count(edge_key(representative[face[start]], representative[face[(start + k) % corners]]));
+          free =
+              !edges_in_use.count(edge_key(representative[face[start]], representative[face[(start + k) % corners]]));
         if (free) {
           apex = start;
           break;
@@ -274,18 +277,20 @@ void require_single_fans(const std::vector<Triangle>& triangles, const std::vect
     for (int k = 0; k < 3; ++k) {
       const auto v = triangles[f][k];
       const auto root = corners.find(static_cast<std::int64_t>(f) * 3 + k);
-      if (first_fan[v] < 0) first_fan[v] = root;
-      else if (first_fan[v] != root) pinched[v] = 1;
+      if (first_fan[v] < 0)
+        first_fan[v] = root;
+      else if (first_fan[v] != root)
+        pinched[v] = 1;
     }
   }
   const auto pinched_count = std::count(pinched.begin(), pinched.end(), 1);
   if (pinched_count == 0) return;
   const auto first = std::find(pinched.begin(), pinched.end(), 1) - pinched.begin();
-  throw MeshRefused(fmt::format(
-      "{}: not a 2-manifold: {} where separate sheets touch at a single point (first: input vertex {}). "
-      "Split the vertex into one copy per sheet, or remove the extra sheet, and try again",
-      name, plural(pinched_count, "pinched (non-manifold) vertex", "pinched (non-manifold) vertices"),
-      original_vertex[first]));
+  throw MeshRefused(
+      fmt::format("{}: not a 2-manifold: {} where separate sheets touch at a single point (first: input vertex {}). "
+                  "Split the vertex into one copy per sheet, or remove the extra sheet, and try again",
+                  name, plural(pinched_count, "pinched (non-manifold) vertex", "pinched (non-manifold) vertices"),
+                  original_vertex[first]));
 }
 
 // Connected components of the triangles (across shared edges), numbered in the order of their first
@@ -317,12 +322,13 @@ std::int32_t choose_component(const std::vector<std::int64_t>& sizes, const Prep
   if (sizes.size() > 1) {
     if (options.component.mode == ComponentChoice::Mode::kRefuse) {
       std::vector<std::string> listed;
-      for (std::size_t c = 0; c < sizes.size() && c < 8; ++c) listed.push_back(fmt::format("#{}: {} triangles", c, sizes[c]));
+      for (std::size_t c = 0; c < sizes.size() && c < 8; ++c)
+        listed.push_back(fmt::format("#{}: {} triangles", c, sizes[c]));
       if (sizes.size() > 8) listed.push_back("...");
-      throw MeshRefused(fmt::format(
-          "{}: the mesh has {} separate connected components ({}); a sphere map needs one. "
-          "Choose one with --component largest or --component N",
-          name, sizes.size(), fmt::join(listed, ", ")));
+      throw MeshRefused(
+          fmt::format("{}: the mesh has {} separate connected components ({}); a sphere map needs one. "
+                      "Choose one with --component largest or --component N",
+                      name, sizes.size(), fmt::join(listed, ", ")));
     }
     if (options.component.mode == ComponentChoice::Mode::kLargest)
       return static_cast<std::int32_t>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
@@ -375,10 +381,10 @@ void orient_outward(std::vector<Triangle>& triangles, const std::vector<EdgeInci
         flip[g] = wanted;
         queue.push_back(g);
       } else if (flip[g] != wanted) {
-        throw MeshRefused(fmt::format(
-            "{}: the surface is not orientable (like a Moebius strip or Klein bottle), so it cannot be "
-            "mapped one-to-one onto a sphere",
-            name));
+        throw MeshRefused(
+            fmt::format("{}: the surface is not orientable (like a Moebius strip or Klein bottle), so it cannot be "
+                        "mapped one-to-one onto a sphere",
+                        name));
       }
     }
   }
@@ -389,8 +395,9 @@ void orient_outward(std::vector<Triangle>& triangles, const std::vector<EdgeInci
   for (auto f : face_ids) {
     auto& t = triangles[f];
     if (flip[f]) std::swap(t[1], t[2]);
-    volume6 += dot(input_positions[original_vertex[t[0]]] - origin,
-                   cross(input_positions[original_vertex[t[1]]] - origin, input_positions[original_vertex[t[2]]] - origin));
+    volume6 +=
+        dot(input_positions[original_vertex[t[0]]] - origin,
+            cross(input_positions[original_vertex[t[1]]] - origin, input_positions[original_vertex[t[2]]] - origin));
   }
   const bool turn_outward = volume6 < 0;
   for (auto f : face_ids) {
@@ -474,8 +481,8 @@ PreparedMesh prepare_triangles(const std::vector<Vec3>& input_positions, const F
     const auto compact = compacted.new_index[representative[i]];
     if (compact >= 0 && component_index[compact] >= 0) report.vertex_of_input[i] = component_index[compact];
   }
-  const std::int64_t euler = static_cast<std::int64_t>(mesh.positions.size()) - edge_count +
-                             static_cast<std::int64_t>(mesh.triangles.size());
+  const std::int64_t euler =
+      static_cast<std::int64_t>(mesh.positions.size()) - edge_count + static_cast<std::int64_t>(mesh.triangles.size());
   report.genus = static_cast<int>((2 - euler) / 2);
   if (euler != 2) {
     throw MeshRefused(fmt::format(

@@ -3,17 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numbers>
 #include <numeric>
-#include <exception>
 #include <stdexcept>
 #include <thread>
 #include <utility>
 
-#include "spheremap/geometry/vec.hpp"
 #include "../util/parallel.hpp"
 #include "simplify_tuning.hpp"
+#include "spheremap/geometry/vec.hpp"
 
 namespace spheremap {
 namespace {
@@ -42,7 +42,8 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return norm(p - (a + (d2 / (d2 - d6)) * ac));
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return norm(p - (b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b)));
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return norm(p - (b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b)));
   const double denominator = 1 / (va + vb + vc);
   return norm(p - (a + (vb * denominator) * ab + (vc * denominator) * ac));
 }
@@ -63,8 +64,10 @@ double segment_distance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3&
       const double b = dot(d1, d2), denominator = a * e - b * b;
       u = denominator > 0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
       v = (b * u + f) / e;
-      if (v < 0) v = 0, u = std::clamp(-c / a, 0.0, 1.0);
-      else if (v > 1) v = 1, u = std::clamp((b - c) / a, 0.0, 1.0);
+      if (v < 0)
+        v = 0, u = std::clamp(-c / a, 0.0, 1.0);
+      else if (v > 1)
+        v = 1, u = std::clamp((b - c) / a, 0.0, 1.0);
     }
   }
   return norm((p + u * d1) - (r + v * d2));
@@ -95,7 +98,7 @@ class Surface {
     std::vector<Vec3> points_a, points_b;
     std::vector<double> worst_a, worst_b;
     std::vector<Candidate> deferred;
-    std::vector<std::int32_t> removed;  // vertices collapsed, not yet taken off their component's size
+    std::vector<std::int32_t> removed;     // vertices collapsed, not yet taken off their component's size
     std::vector<std::int64_t> removed_in;  // per component: collapses in this zone this round
   };
 
@@ -178,7 +181,8 @@ class Surface {
     std::vector<std::int32_t> grouped(static_cast<std::size_t>(half_edges));
     {
       std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-      for (std::int32_t h = 0; h < half_edges; ++h) grouped[static_cast<std::size_t>(fill[std::min(from(h), to(h))]++)] = h;
+      for (std::int32_t h = 0; h < half_edges; ++h)
+        grouped[static_cast<std::size_t>(fill[std::min(from(h), to(h))]++)] = h;
     }
     opp_.assign(static_cast<std::size_t>(half_edges), kDead);
     for (std::int32_t v = 0; v < vertices; ++v) {
@@ -332,7 +336,8 @@ class Surface {
     if (for_quality && !(quality_[ab / 3] > cos_min_angle_ || quality_[opp_[ab] / 3] > cos_min_angle_))
       return Outcome::kRefused;
     const std::int32_t component = component_[a];
-    if (zone >= 0 && w.removed_in[static_cast<std::size_t>(component)] >= zone_budget_[static_cast<std::size_t>(component)])
+    if (zone >= 0 &&
+        w.removed_in[static_cast<std::size_t>(component)] >= zone_budget_[static_cast<std::size_t>(component)])
       return Outcome::kDeferred;
     if (component_size_[component_[a]] <= 4) return Outcome::kRefused;
     // The apexes of the two triangles on ab each lose an edge: they need degree 4 or more.
@@ -348,10 +353,10 @@ class Surface {
     const auto b_in_a = static_cast<std::size_t>(std::find(w.ring_a.begin(), w.ring_a.end(), b) - w.ring_a.begin());
     const auto a_in_b = static_cast<std::size_t>(std::find(w.ring_b.begin(), w.ring_b.end(), a) - w.ring_b.begin());
     double worst_ab = 0, worst_ba = 0, distance_ab = 0, distance_ba = 0;
-    const bool remove_a =
-        !kept_[a] && collapse_allowed(p_[a], w.ring_a, w.points_a, w.worst_a, b_in_a, for_quality, &worst_ab, &distance_ab);
-    const bool remove_b =
-        !kept_[b] && collapse_allowed(p_[b], w.ring_b, w.points_b, w.worst_b, a_in_b, for_quality, &worst_ba, &distance_ba);
+    const bool remove_a = !kept_[a] && collapse_allowed(p_[a], w.ring_a, w.points_a, w.worst_a, b_in_a, for_quality,
+                                                        &worst_ab, &distance_ab);
+    const bool remove_b = !kept_[b] && collapse_allowed(p_[b], w.ring_b, w.points_b, w.worst_b, a_in_b, for_quality,
+                                                        &worst_ba, &distance_ba);
     if (!remove_a && !remove_b) return Outcome::kRefused;
     const bool a_goes =
         remove_a && (!remove_b || worst_ab < worst_ba || (worst_ab == worst_ba && distance_ab <= distance_ba));
@@ -477,7 +482,9 @@ class Surface {
     constexpr std::int32_t kBlockTriangles = 1 << 14;
     auto length_class = [&](double squared_length) {
       const double ratio = std::min(1.0, static_cast<double>(static_cast<float>(squared_length)) / low_squared);
-      return ratio <= 0 ? 0 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
+      return ratio <= 0
+                 ? 0
+                 : std::clamp(kClasses - 1 + static_cast<int>(std::floor(2 * std::log2(ratio))), 0, kClasses - 1);
     };
     constexpr std::int32_t kBlocksPerGroup = 16;
     const auto triangle_count = static_cast<std::int32_t>(tri_.size());
@@ -502,7 +509,8 @@ class Surface {
             const std::int32_t a = tri_[t][k], b = tri_[t][next_corner(k)];
             const double squared_length = squared_distance(p_[a], p_[b]);
             if ((a < b && squared_length < low_squared) || (sliver && squared_length >= low_squared))
-              block.push_back({static_cast<std::uint8_t>(length_class(squared_length)), {std::min(a, b), std::max(a, b)}});
+              block.push_back(
+                  {static_cast<std::uint8_t>(length_class(squared_length)), {std::min(a, b), std::max(a, b)}});
           }
         }
         std::array<std::size_t, kClasses + 1> start{};
@@ -570,7 +578,8 @@ class Surface {
     zone_.resize(out_.size());
     for (std::size_t v = 0; v < out_.size(); ++v) zone_[v] = p_[v][0] < split ? 0 : 1;
     zone_budget_.resize(component_size_.size());
-    for (std::size_t c = 0; c < component_size_.size(); ++c) zone_budget_[c] = std::max<std::int64_t>(0, (component_size_[c] - 64) / 2);
+    for (std::size_t c = 0; c < component_size_.size(); ++c)
+      zone_budget_[c] = std::max<std::int64_t>(0, (component_size_[c] - 64) / 2);
   }
 
   // One pass of angle-improving flips over every edge, in triangle order. Returns the number of flips.
@@ -621,7 +630,8 @@ class Surface {
         std::int32_t g = out_[r];
         do {
           const std::int32_t across = opp_[3 * (g / 3) + next_corner(g % 3)];
-          nearest = std::min(nearest, point_triangle_distance(point, p_[from(across)], p_[to(across)], p_[apex(across)]));
+          nearest =
+              std::min(nearest, point_triangle_distance(point, p_[from(across)], p_[to(across)], p_[apex(across)]));
           g = rotate(g);
         } while (g != out_[r]);
         largest = std::max(largest, nearest);
@@ -686,8 +696,8 @@ ShapeFigures shape_figures(const std::vector<Vec3>& positions, const std::vector
 }  // namespace
 
 Mesh simplify_surface(Mesh mesh, const SimplifyOptions& options, SimplifyReport* report) {
-  for (const double value : {options.target_edge_length, options.max_error, options.min_angle_degrees,
-                             options.max_normal_change_degrees})
+  for (const double value :
+       {options.target_edge_length, options.max_error, options.min_angle_degrees, options.max_normal_change_degrees})
     if (!(value >= 0) || !std::isfinite(value))
       throw std::invalid_argument("simplify_surface: options must be finite and not negative");
   if (!(options.max_normal_change_degrees < 90))
@@ -699,7 +709,8 @@ Mesh simplify_surface(Mesh mesh, const SimplifyOptions& options, SimplifyReport*
   r.vertices_before = static_cast<std::int64_t>(mesh.vertex_count());
   r.triangles_before = static_cast<std::int64_t>(mesh.triangle_count());
   const ShapeFigures before = shape_figures(mesh.positions, mesh.triangles);
-  r.area_before = before.area, r.mean_edge_before = before.mean_edge, r.min_angle_before_degrees = before.min_angle_degrees;
+  r.area_before = before.area, r.mean_edge_before = before.mean_edge,
+  r.min_angle_before_degrees = before.min_angle_degrees;
   const unsigned hardware = std::thread::hardware_concurrency();
   Surface surface(mesh, options, options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, hardware)));
   if (options.target_edge_length > 0) {

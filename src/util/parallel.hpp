@@ -89,8 +89,10 @@ void reserve_mapped(std::vector<T>& values, std::size_t count, int threads) {
   if (threads <= 1 || end <= first + page * 1024) return;  // small: not worth threads
   const std::uintptr_t pages = (end - first) / page;
   parallel_chunks(threads, threads, [&](std::int64_t chunk, int) {
-    const auto from = first + page * (pages * static_cast<std::uintptr_t>(chunk) / static_cast<std::uintptr_t>(threads));
-    const auto to = first + page * (pages * static_cast<std::uintptr_t>(chunk + 1) / static_cast<std::uintptr_t>(threads));
+    const auto from =
+        first + page * (pages * static_cast<std::uintptr_t>(chunk) / static_cast<std::uintptr_t>(threads));
+    const auto to =
+        first + page * (pages * static_cast<std::uintptr_t>(chunk + 1) / static_cast<std::uintptr_t>(threads));
     if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
   });
 #else

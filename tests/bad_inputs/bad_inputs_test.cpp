@@ -4,8 +4,8 @@
 // exits (no signal: no crash) within 30 s (no hang), that nothing is left behind (the folder's tree is
 // unchanged, for failing cases), and that everything it printed or wrote is valid UTF-8.
 // How to add a case: CONTRIBUTING.md ("Adding a bad-input case").
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -185,19 +185,19 @@ TEST_P(BadInput, Case) {
   std::vector<std::string> arguments;
   for (auto& argument : split(c.arguments, ' ')) {
     if (argument.empty()) continue;
-    for (std::size_t at; (at = argument.find("{latin1}")) != std::string::npos;)
-      argument.replace(at, 8, kLatin1Name);
+    for (std::size_t at; (at = argument.find("{latin1}")) != std::string::npos;) argument.replace(at, 8, kLatin1Name);
     arguments.push_back(argument);
   }
   const auto before = tree(folder_);
   const ChildRun run = run_in(folder_, arguments);
   ASSERT_FALSE(run.timed_out) << "no exit within 30 s: spheremap " << c.arguments;
-  ASSERT_EQ(run.signal, 0) << "killed by signal " << run.signal << " (" << strsignal(run.signal) << "):\n" << run.output;
+  ASSERT_EQ(run.signal, 0) << "killed by signal " << run.signal << " (" << strsignal(run.signal) << "):\n"
+                           << run.output;
   EXPECT_EQ(run.exit_code, c.exit_code) << run.output;
   EXPECT_NE(run.output.find(c.names), std::string::npos) << "the message does not name '" << c.names << "':\n"
-                                                          << run.output;
+                                                         << run.output;
   EXPECT_NE(run.output.find(c.problem), std::string::npos) << "the message does not say '" << c.problem << "':\n"
-                                                            << run.output;
+                                                           << run.output;
   EXPECT_EQ(run.output.find("internal error"), std::string::npos) << run.output;
   // Under the sanitizers (their exit code may be the expected one): no report.
   for (const char* report : {"Sanitizer", "runtime error:"})

@@ -40,8 +40,8 @@ TEST_F(Cli, HelpListsTheOptions) {
   EXPECT_NE(top.output.find("map"), std::string::npos);
   const auto map = run_cli("map --help");
   EXPECT_EQ(map.exit_code, 0);
-  for (const char* option : {"--weights", "--solver", "--poles", "--component", "--ascii", "--weld-tolerance", "--no-repair",
-                             "--equalizing-rounds"})
+  for (const char* option : {"--weights", "--solver", "--poles", "--component", "--ascii", "--weld-tolerance",
+                             "--no-repair", "--equalizing-rounds"})
     EXPECT_NE(map.output.find(option), std::string::npos) << option;
 }
 
@@ -65,7 +65,8 @@ TEST_F(Cli, MapsAMeshAndWritesThreeFilesIdenticallyTwice) {
   const auto first = run_cli("map " + input + " -o " + (folder_ / "a").string());
   ASSERT_EQ(first.exit_code, 0) << first.output;
   EXPECT_NE(first.output.find("CERTIFIED"), std::string::npos) << first.output;
-  for (const char* name : {"surface.ply", "sphere.ply", "report.json"}) EXPECT_TRUE(fs::exists(folder_ / "a" / name)) << name;
+  for (const char* name : {"surface.ply", "sphere.ply", "report.json"})
+    EXPECT_TRUE(fs::exists(folder_ / "a" / name)) << name;
   const auto second = run_cli("map " + input + " -o " + (folder_ / "b").string());
   ASSERT_EQ(second.exit_code, 0);
   EXPECT_EQ(slurp(folder_ / "a" / "sphere.ply"), slurp(folder_ / "b" / "sphere.ply"));
@@ -118,7 +119,8 @@ TEST_F(Cli, AsciiAndEveryWeighting) {
     const auto run = run_cli("map " + input + " -o " + (folder_ / weights).string() + " --ascii --weights " + weights);
     EXPECT_EQ(run.exit_code, 0) << weights << run.output;
     EXPECT_NE(slurp(folder_ / weights / "sphere.ply").find("format ascii 1.0"), std::string::npos);
-    EXPECT_NE(slurp(folder_ / weights / "report.json").find(std::string("\"weights\": \"") + weights), std::string::npos);
+    EXPECT_NE(slurp(folder_ / weights / "report.json").find(std::string("\"weights\": \"") + weights),
+              std::string::npos);
   }
 }
 
@@ -235,7 +237,9 @@ TEST_F(Cli, BadStructureFilesExitOneAndWriteNothing) {
   const std::vector<std::tuple<std::string, std::string, std::string, std::string>> cases = {
       {"empty.pdb", "", "", "empty"},
       {"binary.pdb", binary, "", "no atoms"},
-      {"truncated.cif", "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.Cartn_x\nATOM 1 'unterminated\n", "", "cannot read"},
+      {"truncated.cif",
+       "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.Cartn_x\nATOM 1 'unterminated\n", "",
+       "cannot read"},
       {"one.pdb", atom + "END\n", "", "at least two"},
       {"nan.pdb", atom + nan_atom + "END\n", "", "nan"},
       {"waters.pdb", water + "END\n", "", "0 atom(s) left"},
@@ -250,7 +254,8 @@ TEST_F(Cli, BadStructureFilesExitOneAndWriteNothing) {
     EXPECT_NE(run.output.find(name), std::string::npos) << name << ": " << run.output;
     EXPECT_NE(run.output.find(expected), std::string::npos) << name << ": " << run.output;
     EXPECT_FALSE(fs::exists(output)) << name;
-    const auto surface = run_cli("surface " + (folder_ / name).string() + " -o " + (folder_ / (name + ".ply")).string() + options);
+    const auto surface =
+        run_cli("surface " + (folder_ / name).string() + " -o " + (folder_ / (name + ".ply")).string() + options);
     EXPECT_EQ(surface.exit_code, 1) << name << ": " << surface.output;
     EXPECT_FALSE(fs::exists(folder_ / (name + ".ply"))) << name;
   }
@@ -278,7 +283,8 @@ TEST_F(Cli, ComponentsOfAMolecularSurface) {
   const auto all = run_cli("map " + input.string() + " -o " + (folder_ / "all").string() + " --components all");
   ASSERT_EQ(all.exit_code, 0) << all.output;
   for (int k = 0; k < 2; ++k) {
-    const auto component = nlohmann::json::parse(slurp(folder_ / "all" / ("component-" + std::to_string(k)) / "report.json"));
+    const auto component =
+        nlohmann::json::parse(slurp(folder_ / "all" / ("component-" + std::to_string(k)) / "report.json"));
     EXPECT_EQ(component["structure"]["component_mapped"], k);
     EXPECT_TRUE(component["certificate"]["certified"]);
     // Each component is simplified before it is mapped (the default --mesh-edge 1).
@@ -325,13 +331,15 @@ TEST_F(Cli, FastPresetSetsGridMeshEdgeAndFewEqualizingRoundsAndExplicitOptionsWi
   // grid, target edge, simplification tolerance, equalizing rounds, probe
   auto settings = [&](const std::string& options) {
     const auto report = map_report(input, folder_ / "fast", options);
-    return std::make_tuple(report["structure"]["grid"].get<double>(), report["simplification"]["target_edge_length"].get<double>(),
-                           report["simplification"]["max_error"].get<double>(),
-                           report["options"]["max_equalizing_rounds"].get<int>(), report["structure"]["probe"].get<double>());
+    return std::make_tuple(
+        report["structure"]["grid"].get<double>(), report["simplification"]["target_edge_length"].get<double>(),
+        report["simplification"]["max_error"].get<double>(), report["options"]["max_equalizing_rounds"].get<int>(),
+        report["structure"]["probe"].get<double>());
   };
   EXPECT_EQ(settings(""), std::make_tuple(0.5, 1.0, 0.1, 12, 1.4));
   EXPECT_EQ(settings("--preset fast"), std::make_tuple(1.0, 2.0, 0.2, 4, 1.4));
-  EXPECT_EQ(settings("--preset fast --grid 0.7 --mesh-edge 1.5 --equalizing-rounds 3"), std::make_tuple(0.7, 1.5, 0.15, 3, 1.4));
+  EXPECT_EQ(settings("--preset fast --grid 0.7 --mesh-edge 1.5 --equalizing-rounds 3"),
+            std::make_tuple(0.7, 1.5, 0.15, 3, 1.4));
   EXPECT_EQ(settings("--preset fast --equalizing-rounds 0"), std::make_tuple(1.0, 2.0, 0.2, 0, 1.4));
   // The surface command has no map options: the preset sets its grid, and the contour is written as it is.
   const fs::path surface = folder_ / "fast-surface.ply";
@@ -391,19 +399,22 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   for (const char* name : {"red", "green", "blue"})
     EXPECT_NE(header.find(std::string("property uchar ") + name + "\n"), std::string::npos) << name;
   EXPECT_EQ(header.find(kCharge), std::string::npos);  // an mmCIF file has no partial charges
-  EXPECT_EQ(slurp(folder_ / "crambin" / "atoms.csv").rfind(
-                "atomid,serial,model,chain,residue_number,insertion_code,residue_name,atom_name,element,x,y,z,radius", 0),
-            0u);
+  EXPECT_EQ(
+      slurp(folder_ / "crambin" / "atoms.csv")
+          .rfind("atomid,serial,model,chain,residue_number,insertion_code,residue_name,atom_name,element,x,y,z,radius",
+                 0),
+      0u);
   EXPECT_NE(slurp(folder_ / "crambin" / "report.json").find("\"probe\": 1.4"), std::string::npos);
 
-  const auto surface = run_cli("surface " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn.ply").string() +
-                               " --probe 1.8 --grid 0.6");
+  const auto surface = run_cli("surface " + (pdb / "misc" / "1crn.cif").string() + " -o " +
+                               (folder_ / "crn.ply").string() + " --probe 1.8 --grid 0.6");
   ASSERT_EQ(surface.exit_code, 0) << surface.output;
   EXPECT_NE(slurp(folder_ / "crn.ply").substr(0, 400).find(std::string("property int ") + kAtomId), std::string::npos);
 
   // --cavities: crambin's buried cavity (at 0.5 Å, probe 1.4 Å) becomes a reported component; the outer
   // surface, which is mapped, is the same as without it.
-  const auto cavities = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn-cav").string() + " --cavities");
+  const auto cavities =
+      run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "crn-cav").string() + " --cavities");
   ASSERT_EQ(cavities.exit_code, 0) << cavities.output;
   const auto with = nlohmann::json::parse(slurp(folder_ / "crn-cav" / "report.json"));
   const auto without = nlohmann::json::parse(slurp(folder_ / "crambin" / "report.json"));
@@ -437,7 +448,8 @@ TEST_F(DataCli, StructureToCertifiedMapAndSurface) {
   EXPECT_NE(kept.output.find("genus 13"), std::string::npos) << kept.output;
   EXPECT_FALSE(fs::exists(folder_ / "hb-kept" / "sphere.ply"));
 
-  const auto bad = run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "x").string() + " --chains Q");
+  const auto bad =
+      run_cli("map " + (pdb / "misc" / "1crn.cif").string() + " -o " + (folder_ / "x").string() + " --chains Q");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
   EXPECT_NE(bad.output.find("chain 'Q' does not exist"), std::string::npos) << bad.output;
 }
@@ -457,7 +469,7 @@ TEST_F(Cli, AnEarlierRunsFolderIsRefusedOrReplacedWithForce) {
   EXPECT_NE(refused.output.find("earlier run"), std::string::npos) << refused.output;
   EXPECT_NE(refused.output.find("--force"), std::string::npos) << refused.output;
   EXPECT_TRUE(fs::exists(out / "component-3" / "report.json"));
-  EXPECT_EQ(slurp(out / "report.json"), report);  // untouched
+  EXPECT_EQ(slurp(out / "report.json"), report);                                // untouched
   ASSERT_TRUE(fs::exists(out / "pictures") && fs::exists(out / "index.html"));  // the first run's
   const auto forced = run_cli("map " + input + " -o " + out.string() + " -q --force --no-pictures");
   EXPECT_EQ(forced.exit_code, 0) << forced.output;
@@ -488,7 +500,8 @@ TEST_F(Cli, StructureWarningsReachStderrTheReportAndTheBatchSummary) {
   EXPECT_NE(batch.output.find("warning: the file does not end with a line break"), std::string::npos) << batch.output;
   EXPECT_NE(slurp(folder_ / "b" / "summary.csv").find("warning: the file does not end with a line break"),
             std::string::npos);
-  const auto strict = run_cli("batch " + (folder_ / "cut.pdb").string() + " -o " + (folder_ / "s").string() + " -q --strict");
+  const auto strict =
+      run_cli("batch " + (folder_ / "cut.pdb").string() + " -o " + (folder_ / "s").string() + " -q --strict");
   EXPECT_EQ(strict.exit_code, 1) << strict.output;
   EXPECT_NE(slurp(folder_ / "s" / "summary.csv").find("--strict"), std::string::npos);
 }

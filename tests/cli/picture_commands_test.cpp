@@ -212,9 +212,9 @@ TEST_F(PictureCommands, RenderWritesThePictureOfTheRequestedSizeAndItsGrid) {
   EXPECT_EQ(image.width, 800);
   EXPECT_EQ(image.height, 400);
   EXPECT_TRUE(fs::exists(map_ / "pictures" / "b_factor-equirectangular.tsv"));
-  ASSERT_EQ(run_cli("render " + map_.string() + " --hemispheres --format pdf -o " + (folder_ / "h.pdf").string())
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run_cli("render " + map_.string() + " --hemispheres --format pdf -o " + (folder_ / "h.pdf").string()).exit_code,
+      0);
   EXPECT_EQ(testing_support::slurp(folder_ / "h.pdf").substr(0, 5), "%PDF-");
   const auto trace = run_cli("render " + map_.string() + " --hemispheres --trace --property sequence_position -o " +
                              (folder_ / "t.png").string());
@@ -222,8 +222,8 @@ TEST_F(PictureCommands, RenderWritesThePictureOfTheRequestedSizeAndItsGrid) {
 }
 
 TEST_F(PictureCommands, BadRenderOptionsExitOneAndWriteNothing) {
-  for (const char* options : {"--property nope", "--range 5,1", "--size 10x10", "--format gif",
-                              "--projection mercator", "--outline Z:1", "--outline A:x"}) {
+  for (const char* options : {"--property nope", "--range 5,1", "--size 10x10", "--format gif", "--projection mercator",
+                              "--outline Z:1", "--outline A:x"}) {
     const auto run = run_cli("render " + map_.string() + " " + options);
     EXPECT_EQ(run.exit_code, 1) << options << ": " << run.output;
     EXPECT_NE(run.output.find("error"), std::string::npos) << options << ": " << run.output;

@@ -33,8 +33,8 @@ Vec3 to_double(const IntVec& v, int row_exponent = 0, const std::array<int, 3>& 
 }
 
 int naive_sign(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
-                     a[2] * (b[0] * c[1] - b[1] * c[0]);
+  const double det =
+      a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "spheremap/geometry/vec.hpp"
 #include "../test_geometry.hpp"
+#include "spheremap/geometry/vec.hpp"
 
 namespace spheremap {
 namespace {
@@ -40,8 +40,8 @@ TEST(Superposition, RotationIsProperAndRmsdMatchesItsDefinition) {
   for (const auto& s : sphere) surface.push_back(rotate(rotation, {3 * s[0], s[1], 0.5 * s[2]}));
   const Superposition result = superpose_sphere_on_surface(surface, sphere);
   const auto& r = result.rotation;
-  const double determinant = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                             r[2] * (r[3] * r[7] - r[4] * r[6]);
+  const double determinant =
+      r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) + r[2] * (r[3] * r[7] - r[4] * r[6]);
   EXPECT_NEAR(determinant, 1.0, 1e-12);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

@@ -1,6 +1,6 @@
 // Tests of read_polygon_soup, write_ply and write_file_atomically.
-#include "spheremap/attributes.hpp"
 #include "spheremap/io/mesh_io.hpp"
+#include "spheremap/attributes.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -162,9 +162,9 @@ TEST_F(PlyWriter, TextAttributesAreByteListsThatReadersSkip) {
     const std::string bytes = slurp(path);
     EXPECT_NE(bytes.find("property int label\n" + header_line + "element face 4\n"), std::string::npos);
     if (ascii) {
-      EXPECT_NE(bytes.find(" 2 67 65\n"), std::string::npos);      // "CA"
-      EXPECT_NE(bytes.find(" 3 79 88 84\n"), std::string::npos);   // "OXT"
-      EXPECT_NE(bytes.find(" 0\n"), std::string::npos);            // ""
+      EXPECT_NE(bytes.find(" 2 67 65\n"), std::string::npos);     // "CA"
+      EXPECT_NE(bytes.find(" 3 79 88 84\n"), std::string::npos);  // "OXT"
+      EXPECT_NE(bytes.find(" 0\n"), std::string::npos);           // ""
     } else {
       EXPECT_NE(bytes.find(std::string("\x03OXT", 4)), std::string::npos);
       const std::size_t header_end = bytes.find("end_header\n") + 11;
@@ -236,8 +236,9 @@ TEST_F(PlyWriter, FilesOfManyMegabytesAreWrittenInPiecesWithNothingLostOrRepeate
       // Per vertex: x y z, the label, a length byte and the text (0 to 4 bytes, 2 on average); per face 13.
       EXPECT_EQ(bytes.size(), body + static_cast<std::size_t>(n) * (3 * 8 + 4 + 1 + 2) + mesh.triangles.size() * 13);
     } else {
-      EXPECT_EQ(static_cast<std::size_t>(std::count(bytes.begin() + static_cast<std::ptrdiff_t>(body), bytes.end(), '\n')),
-                static_cast<std::size_t>(n) + mesh.triangles.size());
+      EXPECT_EQ(
+          static_cast<std::size_t>(std::count(bytes.begin() + static_cast<std::ptrdiff_t>(body), bytes.end(), '\n')),
+          static_cast<std::size_t>(n) + mesh.triangles.size());
     }
     const PolygonSoup soup = read_polygon_soup(path);
     expect_positions_bit_exact(soup.positions, mesh.positions);
@@ -528,17 +529,20 @@ TEST_F(PlyReader, ReportsBadHeaders) {
   expect_input_error(write("noformat.ply", "ply\nelement vertex 0\nend_header\n"), "no 'format' line");
   expect_input_error(write("novertex.ply", "ply\nformat ascii 1.0\nelement face 0\nend_header\n"),
                      "no 'element vertex'");
-  expect_input_error(write("noz.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
-                                      "end_header\n"),
+  expect_input_error(write("noz.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                           "end_header\n"),
                      "no 'z' property");
   expect_input_error(write("type.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float128 x\nend_header\n"),
                      "unknown property type 'float128'");
-  expect_input_error(write("noindices.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
-                                            "property float y\nproperty float z\nelement face 0\nproperty int a\n"
-                                            "end_header\n"),
+  expect_input_error(write("noindices.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                           "property float y\nproperty float z\nelement face 0\nproperty int a\n"
+                           "end_header\n"),
                      "no 'vertex_indices' list property");
-  expect_input_error(write("pointcloud.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
-                                             "property float y\nproperty float z\nend_header\n0 0 0\n"),
+  expect_input_error(write("pointcloud.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                           "property float y\nproperty float z\nend_header\n0 0 0\n"),
                      "no faces");
 }
 
@@ -641,9 +645,10 @@ TEST_F(MeshIoErrors, BinaryDataInTextFormats) {
   garbage += std::string("\x00\x01\x02\xff", 4);
   expect_input_error(write("binary.obj", garbage), "byte 16 (line 3) is binary data (0x00)");
   expect_input_error(write("binary.off", "OFF\n3 1 0\n" + garbage), "binary data");
-  expect_input_error(write("binary.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
-                                         "property float y\nproperty float z\nend_header\n" +
-                                             garbage),
+  expect_input_error(write("binary.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                           "property float y\nproperty float z\nend_header\n" +
+                               garbage),
                      "binary data");
 }
 
@@ -659,8 +664,9 @@ TEST_F(MeshIoErrors, CorruptedFilesNeverCrash) {
       {"mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf -1/2/3 -2//1 -3\nf 1 2 3 4\n"},
       {"mesh.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n4 0 1 2 3 255 0 0\n"},
       {"mesh.stl", binary_stl("solid", {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, 0, 0, 0, 0, 1}})},
-      {"text.stl", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
-                   "endfacet\nendsolid a\n"},
+      {"text.stl",
+       "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+       "endfacet\nendsolid a\n"},
   };
   std::mt19937 random(12345);
   for (const auto& [name, original] : originals) {
@@ -699,8 +705,10 @@ TEST(DataMeshIo, ReadsEveryMeshOfTheSharedDataSet) {
   const fs::path folder = fs::path(SPHEREMAP_SHARED_DATA_DIR) / "meshes";
   if (!fs::is_directory(folder)) GTEST_SKIP() << "../shared/data not found: " << folder;
   const std::map<std::string, KnownCounts> known = {
-      {"ajc_horse.ply", {48485, 96966}},       {"gc_spot.ply", {2930, 5856}},
-      {"libigl_horse_quad.obj", {2400, 2398}}, {"bff_box.obj", {26, 36}},
+      {"ajc_horse.ply", {48485, 96966}},
+      {"gc_spot.ply", {2930, 5856}},
+      {"libigl_horse_quad.obj", {2400, 2398}},
+      {"bff_box.obj", {26, 36}},
       {"libigl_decimated-knight.off", {502, 1000}},
   };
   std::size_t meshes_read = 0;

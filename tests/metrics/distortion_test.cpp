@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "../test_geometry.hpp"
 #include "spheremap/geometry/superposition.hpp"
 #include "spheremap/geometry/vec.hpp"
-#include "../test_geometry.hpp"
 
 namespace spheremap {
 namespace {

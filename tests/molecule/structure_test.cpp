@@ -20,9 +20,10 @@ class Structure : public testing_support::FolderTest {};
 
 // A PDB record in fixed columns.
 std::string record(const char* kind, int serial, const char* name, char altloc, const char* residue, char chain,
-                   int number, double x, double y, double z, double occupancy, const char* element, double b_factor = 0) {
-  return fmt::format("{:<6}{:>5} {:<4}{}{:>3} {}{:>4}    {:>8.3f}{:>8.3f}{:>8.3f}{:>6.2f}{:>6.2f}          {:>2}\n", kind,
-                     serial, name, altloc, residue, chain, number, x, y, z, occupancy, b_factor, element);
+                   int number, double x, double y, double z, double occupancy, const char* element,
+                   double b_factor = 0) {
+  return fmt::format("{:<6}{:>5} {:<4}{}{:>3} {}{:>4}    {:>8.3f}{:>8.3f}{:>8.3f}{:>6.2f}{:>6.2f}          {:>2}\n",
+                     kind, serial, name, altloc, residue, chain, number, x, y, z, occupancy, b_factor, element);
 }
 
 std::string small_pdb() {
@@ -73,7 +74,8 @@ TEST_F(Structure, OptionsSelectChainsAndKeepWhatIsAsked) {
     read_structure(folder_ / "small.pdb", options);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("chain 'Z' does not exist; the chains are: A, B"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("chain 'Z' does not exist; the chains are: A, B"), std::string::npos)
+        << e.what();
   }
   StructureOptions radii;
   radii.radii = std::map<std::string, double>{{"C", 2.0}, {"N", 1.5}, {"FE", 1.3}};
@@ -127,17 +129,19 @@ TEST_F(Structure, BadInputsGiveAClearError) {
   EXPECT_NE(message(write("x.xyz", "1\n")).find("unknown structure format"), std::string::npos);
   EXPECT_NE(message(write("garbage.cif", std::string("\x01\x02\x03\xff data_ loop_", 17))).find("garbage.cif"),
             std::string::npos);
-  EXPECT_NE(message(write("one.pdb", record("ATOM", 1, " CA", ' ', "ALA", 'A', 1, 0, 0, 0, 1, "C"))).find("at least two"),
-            std::string::npos);
+  EXPECT_NE(
+      message(write("one.pdb", record("ATOM", 1, " CA", ' ', "ALA", 'A', 1, 0, 0, 0, 1, "C"))).find("at least two"),
+      std::string::npos);
   EXPECT_NE(message(write("far.pdb", record("ATOM", 1, " CA", ' ', "ALA", 'A', 1, 0, 0, 0, 1, "C") +
                                          record("ATOM", 2, " CB", ' ', "ALA", 'A', 1, 9999999, 0, 0, 1, "C")))
                 .find("not a real position"),
             std::string::npos);
-  EXPECT_NE(message(write("water.pdb", record("HETATM", 1, " O", ' ', "HOH", 'A', 1, 0, 0, 0, 1, "O") +
-                                           record("HETATM", 2, " O", ' ', "HOH", 'A', 2, 3, 0, 0, 1, "O")))
-                .find("left after filtering (hydrogens, waters); a molecular surface needs at least two. Check --chains "
-                      "and --model, or keep more atoms (--keep-waters, --keep-hydrogens)"),
-            std::string::npos);
+  EXPECT_NE(
+      message(write("water.pdb", record("HETATM", 1, " O", ' ', "HOH", 'A', 1, 0, 0, 0, 1, "O") +
+                                     record("HETATM", 2, " O", ' ', "HOH", 'A', 2, 3, 0, 0, 1, "O")))
+          .find("left after filtering (hydrogens, waters); a molecular surface needs at least two. Check --chains "
+                "and --model, or keep more atoms (--keep-waters, --keep-hydrogens)"),
+      std::string::npos);
 }
 
 // A file cut short: the last line without its line break, or the last record shorter than the others, is a
@@ -171,8 +175,9 @@ TEST_F(Structure, SignsOfATruncatedFileAreWarningsAndStrictMakesThemErrors) {
 
 // Names from the file reach JSON and CSV: ill-formed UTF-8 becomes U+FFFD there.
 TEST_F(Structure, NamesAreMadeValidUtf8) {
-  const auto molecule = read_structure(write("latin1.pdb", record("ATOM", 1, " N\xE9", ' ', "ALA", 'A', 1, 1, 2, 3, 1, "N") +
-                                                                record("ATOM", 2, " CA", ' ', "AL\xFF", 'A', 1, 2.4, 2, 3, 1, "C")));
+  const auto molecule =
+      read_structure(write("latin1.pdb", record("ATOM", 1, " N\xE9", ' ', "ALA", 'A', 1, 1, 2, 3, 1, "N") +
+                                             record("ATOM", 2, " CA", ' ', "AL\xFF", 'A', 1, 2.4, 2, 3, 1, "C")));
   ASSERT_EQ(molecule.atoms.size(), 2u);
   EXPECT_EQ(molecule.atoms[0].name, "N\xEF\xBF\xBD");
   EXPECT_EQ(molecule.atoms[1].residue_name, "AL\xEF\xBF\xBD");
@@ -181,10 +186,10 @@ TEST_F(Structure, NamesAreMadeValidUtf8) {
 // B-factors are the column users fill with any per-atom value: each must come out as the decimal in the
 // file (gemmi holds it as a float; 15.23f widened is 15.229999542236328).
 TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
-  const auto pdb = read_structure(write("b.pdb", record("ATOM", 1, " N", ' ', "ALA", 'A', 1, 1.0, 0, 0, 1, "N", 15.23) +
-                                                    record("ATOM", 2, " CA", ' ', "ALA", 'A', 1, 2.5, 0, 0, 1, "C", 7.5) +
-                                                    record("ATOM", 3, " C", ' ', "ALA", 'A', 1, 4.0, 0, 0, 1, "C", -0.01) +
-                                                    "END\n"));
+  const auto pdb = read_structure(
+      write("b.pdb", record("ATOM", 1, " N", ' ', "ALA", 'A', 1, 1.0, 0, 0, 1, "N", 15.23) +
+                         record("ATOM", 2, " CA", ' ', "ALA", 'A', 1, 2.5, 0, 0, 1, "C", 7.5) +
+                         record("ATOM", 3, " C", ' ', "ALA", 'A', 1, 4.0, 0, 0, 1, "C", -0.01) + "END\n"));
   ASSERT_EQ(pdb.atoms.size(), 3u);
   for (const auto& a : pdb.atoms) ASSERT_TRUE(a.b_factor.has_value());
   EXPECT_EQ(*pdb.atoms[0].b_factor, 15.23);
@@ -198,27 +203,28 @@ TEST_F(Structure, BFactorsAreReadAsTheFileWritesThem) {
   const std::string values =
       "_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n";
   const std::string header = labels + values;
-  const std::string with_auth = labels + "_atom_site.auth_seq_id\n_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n" +
-                                values +
-                                "ATOM 1 N N ALA A 1 1 1 A 1 1.000 0.000 0.000 1.00 12.345\n"
-                                "ATOM 2 C CA ALA A 1 1 1 A 1 2.500 0.000 0.000 1.00 99.99\n";
+  const std::string with_auth =
+      labels + "_atom_site.auth_seq_id\n_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n" + values +
+      "ATOM 1 N N ALA A 1 1 1 A 1 1.000 0.000 0.000 1.00 12.345\n"
+      "ATOM 2 C CA ALA A 1 1 1 A 1 2.500 0.000 0.000 1.00 99.99\n";
   const auto cif = read_structure(write("b.cif", with_auth));
   ASSERT_EQ(cif.atoms.size(), 2u);
   EXPECT_EQ(*cif.atoms[0].b_factor, 12.345);
   EXPECT_EQ(*cif.atoms[1].b_factor, 99.99);
   const auto bare = read_structure(write("bare.cif", header + "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00 12.345\n"
-                                                               "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00 99.99\n"));
+                                                              "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00 99.99\n"));
   ASSERT_EQ(bare.atoms.size(), 2u);
   EXPECT_EQ(*bare.atoms[0].b_factor, 12.345);
   EXPECT_EQ(*bare.atoms[1].b_factor, 99.99);
   // A table without the column (or with '?' in it) gives no B-factor, not a zero.
   const auto without = read_structure(write("none.cif", header.substr(0, header.rfind("_atom_site.B_iso_or_equiv")) +
-                                                          "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00\n"
-                                                          "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00\n"));
+                                                            "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00\n"
+                                                            "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00\n"));
   ASSERT_EQ(without.atoms.size(), 2u);
   EXPECT_FALSE(without.atoms[0].b_factor.has_value());
-  const auto unknown = read_structure(write("unknown.cif", header + "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00 ?\n"
-                                                                  "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00 4.5\n"));
+  const auto unknown =
+      read_structure(write("unknown.cif", header + "ATOM 1 N N ALA A 1 1 1.000 0.000 0.000 1.00 ?\n"
+                                                   "ATOM 2 C CA ALA A 1 1 2.500 0.000 0.000 1.00 4.5\n"));
   EXPECT_FALSE(unknown.atoms[0].b_factor.has_value());
   EXPECT_EQ(*unknown.atoms[1].b_factor, 4.5);
 }

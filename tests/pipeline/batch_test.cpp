@@ -48,9 +48,12 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
   for (std::size_t k = 0; k < text.size(); ++k) {
     const char c = text[k];
     if (quoted) {
-      if (c == '"' && k + 1 < text.size() && text[k + 1] == '"') field += '"', ++k;
-      else if (c == '"') quoted = false;
-      else field += c;
+      if (c == '"' && k + 1 < text.size() && text[k + 1] == '"')
+        field += '"', ++k;
+      else if (c == '"')
+        quoted = false;
+      else
+        field += c;
     } else if (c == '"') {
       EXPECT_TRUE(field.empty()) << "a quote inside an unquoted field";
       quoted = was_quoted = true;
@@ -153,9 +156,10 @@ TEST_F(Batch, ExpandsFoldersGlobsAndListsInADeterministicOrder) {
   // Lists: comments, blank lines, paths relative to the list, nested lists; duplicates once (first wins);
   // a missing file is kept (its run fails with the reader's message).
   write_text(folder_ / "lists" / "inner.txt", "../in/c.stl\n");
-  write_text(folder_ / "lists" / "main.list", "# inputs\n\n  ../in/z.off  \ninner.txt\n../in/b.ply\n../in/missing.ply\n");
-  const auto listed = expand_batch_inputs({"@" + (folder_ / "lists" / "main.list").string(), (in / "b.ply").string(),
-                                           (in / "z.off").string()});
+  write_text(folder_ / "lists" / "main.list",
+             "# inputs\n\n  ../in/z.off  \ninner.txt\n../in/b.ply\n../in/missing.ply\n");
+  const auto listed = expand_batch_inputs(
+      {"@" + (folder_ / "lists" / "main.list").string(), (in / "b.ply").string(), (in / "z.off").string()});
   names.clear();
   for (const auto& path : listed) names.push_back(path.filename().string());
   EXPECT_EQ(names, (std::vector<std::string>{"z.off", "c.stl", "b.ply", "missing.ply"}));
@@ -277,7 +281,8 @@ TEST_F(Batch, SeveralWeightingsGetOneSubfolderEachAndOneRowEach) {
   EXPECT_EQ(result.rows[2]["status"], "ok");
   EXPECT_EQ(result.rows[3]["status"], "ok");
   EXPECT_EQ(result.rows[2]["weights"], "mean-value");
-  EXPECT_EQ(Json::parse(slurp(folder_ / "out" / "ico" / "mean-value" / "report.json"))["options"]["weights"], "mean-value");
+  EXPECT_EQ(Json::parse(slurp(folder_ / "out" / "ico" / "mean-value" / "report.json"))["options"]["weights"],
+            "mean-value");
   EXPECT_EQ(Json::parse(slurp(folder_ / "out" / "ico" / "uniform" / "report.json"))["options"]["weights"], "uniform");
 }
 
@@ -537,7 +542,8 @@ TEST_F(BatchCli, KilledBatchResumesToTheSameSummary) {
   EXPECT_EQ(jsonl_without_timings(slurp(killed / "summary.jsonl")),
             jsonl_without_timings(slurp(reference / "summary.jsonl")));
   for (int m = 0; m < 8; ++m)
-    EXPECT_EQ(slurp(killed / fmt::format("m{}", m) / "sphere.ply"), slurp(reference / fmt::format("m{}", m) / "sphere.ply"));
+    EXPECT_EQ(slurp(killed / fmt::format("m{}", m) / "sphere.ply"),
+              slurp(reference / fmt::format("m{}", m) / "sphere.ply"));
   for (const auto& entry : fs::recursive_directory_iterator(killed))
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 
@@ -582,13 +588,14 @@ TEST_F(BatchCli, ExitCodesAndOneLinePerInputWithoutATerminal) {
   EXPECT_NE(log.find("2 error(s)"), std::string::npos) << log;
   EXPECT_EQ(parse_csv(slurp(root / "summary.csv")).size(), 6u);  // the glob's files were already in: once each
   // Only good inputs: 0.
-  EXPECT_EQ(wait_exit_code(spawn_cli({"batch", (folder_ / "in" / "ico.ply").string(), "-o", (folder_ / "good").string()},
-                                     folder_ / "log.txt")),
-            0);
+  EXPECT_EQ(
+      wait_exit_code(spawn_cli({"batch", (folder_ / "in" / "ico.ply").string(), "-o", (folder_ / "good").string()},
+                               folder_ / "log.txt")),
+      0);
   // A bad command line: 1, nothing written.
-  EXPECT_EQ(wait_exit_code(spawn_cli({"batch", (folder_ / "in").string(), "-o", (folder_ / "bad").string(), "--weights",
-                                      "uniform,uniform"},
-                                     folder_ / "log.txt")),
+  EXPECT_EQ(wait_exit_code(spawn_cli(
+                {"batch", (folder_ / "in").string(), "-o", (folder_ / "bad").string(), "--weights", "uniform,uniform"},
+                folder_ / "log.txt")),
             1);
   EXPECT_FALSE(fs::exists(folder_ / "bad" / "summary.csv"));
 }

@@ -32,16 +32,20 @@ TEST_F(DataPipeline, EveryStructureMapsCertifiedAtOneAngstrom) {
     EXPECT_TRUE(result.simplified);
     const auto& c = result.map.certificate;
     EXPECT_TRUE(c.certified()) << c.folded << " folded, " << c.collapsed << " collapsed";
-    if (c.certified()) ++certified;
-    else failures.push_back(file.filename().string());
+    if (c.certified())
+      ++certified;
+    else
+      failures.push_back(file.filename().string());
     if (result.topology.genus_before != 0) ++repaired;
     amd += result.map.diagnostics.solve.elimination_order == FillReducingOrder::kAmd;
   }
   // Molecular surfaces of 5k vertices or more are factorized in AMD's order (fewer flops than the
   // geometric one's on every one measured).
   EXPECT_GE(amd, 40);
-  std::printf("88 structures at 1 Å, simplified to 1 Å edges: %d certified (%d had handles repaired, %d factorized in AMD's order)",
-              certified, repaired, amd);
+  std::printf(
+      "88 structures at 1 Å, simplified to 1 Å edges: %d certified (%d had handles repaired, %d factorized in AMD's "
+      "order)",
+      certified, repaired, amd);
   for (const auto& f : failures) std::printf(" not certified: %s", f.c_str());
   std::printf("\n");
 }
@@ -56,16 +60,18 @@ TEST_F(DataPipeline, GroELMapsCertifiedAtTheDefaultGrid) {
   EXPECT_GT(result.topology.genus_before, 0);
   EXPECT_GT(result.map.diagnostics.repair.plain_certificate.collapsed, 100000);
   const auto& c = result.map.certificate;
-  EXPECT_TRUE(c.certified()) << c.folded << " folded, " << c.collapsed << " collapsed, smallest ratio " << c.min_area_ratio;
+  EXPECT_TRUE(c.certified()) << c.folded << " folded, " << c.collapsed << " collapsed, smallest ratio "
+                             << c.min_area_ratio;
   EXPECT_EQ(result.map.diagnostics.solve.elimination_order, FillReducingOrder::kAmd);
   // Its equalizing rounds each collapse a few hundred triangles that untangling lifts again; before such
   // rounds were untangled, none was kept (area distortion 186% instead of 134-140%).
   EXPECT_GT(result.map.diagnostics.repair.equalizing_rounds, 0);
   const auto& repair = result.map.diagnostics.repair;
-  std::printf("1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds (%d equalizing), %lld untangling moves, "
-              "smallest ratio %.3g\n",
-              result.map.sphere.size(), repair.reweighting_rounds, repair.equalizing_rounds,
-              static_cast<long long>(repair.untangling_moves), c.min_area_ratio);
+  std::printf(
+      "1aon at 0.5 Å: %zu mapped vertices, %d re-weighting rounds (%d equalizing), %lld untangling moves, "
+      "smallest ratio %.3g\n",
+      result.map.sphere.size(), repair.reweighting_rounds, repair.equalizing_rounds,
+      static_cast<long long>(repair.untangling_moves), c.min_area_ratio);
 }
 
 }  // namespace

@@ -73,20 +73,19 @@ TEST_F(Report, ReadsBackWhatMakeReportWrote) {
   ASSERT_FALSE(r.timings.empty());
   EXPECT_TRUE(std::is_sorted(r.timings.begin(), r.timings.end(),
                              [](const StageTime& a, const StageTime& b) { return a.stage < b.stage; }));
-  EXPECT_EQ(std::count_if(r.timings.begin(), r.timings.end(), [](const StageTime& t) { return t.stage == "read"; }),
-            1);
+  EXPECT_EQ(std::count_if(r.timings.begin(), r.timings.end(), [](const StageTime& t) { return t.stage == "read"; }), 1);
   EXPECT_EQ(r.timings.size(), diagnostics.timings.size() + 4);  // read, prepare, metrics, properties
 }
 
 TEST_F(Report, ReadsTheStructurePartsAndCountsTheChangesByKind) {
   nlohmann::json with = report();
   with["structure"] = {{"atoms", 1234}, {"probe", 1.4}, {"grid", 0.5}};
-  with["structure"]["topology_repair"] = {{"method", "per-handle"}, {"rounds", 2}, {"samples_changed", 40},
-                                          {"volume_changed", 5.0},  {"area_before", 100.0}, {"area_after", 99.0},
-                                          {"area_changed_percent", -1.0}, {"genus_before", 3}};
+  with["structure"]["topology_repair"] = {
+      {"method", "per-handle"}, {"rounds", 2},        {"samples_changed", 40},        {"volume_changed", 5.0},
+      {"area_before", 100.0},   {"area_after", 99.0}, {"area_changed_percent", -1.0}, {"genus_before", 3}};
   with["structure"]["topology_repair"]["changes"] = {{{"kind", "cut"}}, {{"kind", "fill"}}, {{"kind", "cut"}}};
-  with["simplification"] = {{"vertices_before", 5000}, {"area_before", 100.0}, {"area_after", 99.5},
-                            {"max_vertex_distance", 0.1}};
+  with["simplification"] = {
+      {"vertices_before", 5000}, {"area_before", 100.0}, {"area_after", 99.5}, {"max_vertex_distance", 0.1}};
   const ReportSummary r = read_report(with, "x");
   ASSERT_TRUE(r.structure.has_value());
   EXPECT_EQ(r.structure->atoms, 1234);

@@ -97,7 +97,7 @@ TEST(ColourScale, CategoricalValuesRoundToTheirClass) {
   const ValueRange unused{0, 1};
   EXPECT_EQ(colour_index(ScaleKind::categorical, unused, 3), 3);
   EXPECT_EQ(colour_index(ScaleKind::categorical, unused, 2.4), 2);
-  EXPECT_EQ(colour_index(ScaleKind::categorical, unused, 2.5), 3);   // halves away from zero
+  EXPECT_EQ(colour_index(ScaleKind::categorical, unused, 2.5), 3);  // halves away from zero
   EXPECT_EQ(colour_index(ScaleKind::categorical, unused, -0.4), 0);
   EXPECT_EQ(colour_index(ScaleKind::categorical, unused, -0.5), -1);
   EXPECT_EQ(colour_index(ScaleKind::categorical, unused, 255.4), 255);

@@ -46,10 +46,10 @@ TEST(Projection, ForwardThenInverseReturnsThePoint) {
 }
 
 TEST(Projection, PointsOutsideTheMapHaveNoGlobePoint) {
-  EXPECT_FALSE(unproject(Projection::mollweide, {2.8, 1.3}));           // beyond the ellipse's corner
-  EXPECT_FALSE(unproject(Projection::sinusoidal, {3.0, 1.2}));          // beyond the sinusoid
-  EXPECT_FALSE(unproject(Projection::equirectangular, {3.2, 0}));       // beyond ±180°
-  EXPECT_TRUE(unproject(Projection::mollweide, {0, std::sqrt(2.0)}));   // the north pole
+  EXPECT_FALSE(unproject(Projection::mollweide, {2.8, 1.3}));          // beyond the ellipse's corner
+  EXPECT_FALSE(unproject(Projection::sinusoidal, {3.0, 1.2}));         // beyond the sinusoid
+  EXPECT_FALSE(unproject(Projection::equirectangular, {3.2, 0}));      // beyond ±180°
+  EXPECT_TRUE(unproject(Projection::mollweide, {0, std::sqrt(2.0)}));  // the north pole
   const auto edge = unproject(Projection::mollweide, {2 * std::sqrt(2.0), 0});
   ASSERT_TRUE(edge);
   EXPECT_NEAR(edge->longitude, kPi, 1e-12);
@@ -63,10 +63,11 @@ TEST(Projection, NamesRoundTrip) {
 
 // PROJ's `proj` program on the unit sphere: "lon lat" in degrees in, "x y" out.
 std::vector<PlanePoint> proj_oracle(const std::string& definition, const std::vector<GeoPoint>& points) {
-  const std::filesystem::path input = std::filesystem::temp_directory_path() /
-                                      ("spheremap-proj-" + std::to_string(::getpid()) + ".txt");
+  const std::filesystem::path input =
+      std::filesystem::temp_directory_path() / ("spheremap-proj-" + std::to_string(::getpid()) + ".txt");
   std::string text;
-  for (const GeoPoint& p : points) text += fmt::format("{:.12f} {:.12f}\n", p.longitude / kDegree, p.latitude / kDegree);
+  for (const GeoPoint& p : points)
+    text += fmt::format("{:.12f} {:.12f}\n", p.longitude / kDegree, p.latitude / kDegree);
   testing_support::write_text(input, text);
   const std::string command = "proj " + definition + " -f %.12f " + input.string();
   std::FILE* pipe = ::popen(command.c_str(), "r");
@@ -156,10 +157,9 @@ TEST(MapSamples, APropertyEqualToZGivesHorizontalBandsOnEveryProjection) {
         if (samples.triangle[i] < 0) continue;
         ++on_map;
         const double latitude = (1 - (row + 0.5) / height * 2) * projection_half_extent(projection).y;
-        const double expected =
-            projection == Projection::mollweide
-                ? std::sin(unproject(projection, {0, latitude})->latitude)
-                : std::sin(latitude);
+        const double expected = projection == Projection::mollweide
+                                    ? std::sin(unproject(projection, {0, latitude})->latitude)
+                                    : std::sin(latitude);
         EXPECT_NEAR(value_at(globe, z, samples.triangle[i], samples.weights[i]), expected, 2e-3)
             << to_string(projection) << " row " << row << " column " << column;
       }
@@ -169,9 +169,9 @@ TEST(MapSamples, APropertyEqualToZGivesHorizontalBandsOnEveryProjection) {
     const PlanePoint half = projection_half_extent(projection);
     for (int row = 0; row < height; ++row)
       for (int column = 0; column < width; ++column)
-        inside += unproject(projection, {((column + 0.5) / width * 2 - 1) * half.x,
-                                         (1 - (row + 0.5) / height * 2) * half.y})
-                      .has_value();
+        inside +=
+            unproject(projection, {((column + 0.5) / width * 2 - 1) * half.x, (1 - (row + 0.5) / height * 2) * half.y})
+                .has_value();
     EXPECT_EQ(on_map, inside) << to_string(projection);
     EXPECT_GT(on_map, width * height / 2) << to_string(projection);
   }
@@ -253,7 +253,8 @@ TEST_F(MapFigureFiles, AreNotBlankAndTheSameInputGivesTheSameBytes) {
   MapFigureOptions options = small_figure(Projection::mollweide);
   const auto size = map_image_size(options);
   const MapSamples samples = sample_map(locator, Projection::mollweide, size[0], size[1]);
-  testing_support::write_text(folder_ / "octant.png", map_figure(globe, *find_globe_property(globe, "octant"), samples, options));
+  testing_support::write_text(folder_ / "octant.png",
+                              map_figure(globe, *find_globe_property(globe, "octant"), samples, options));
   const RgbImage image = read_png(folder_ / "octant.png");
   std::set<std::array<std::uint8_t, 3>> colours;
   for (std::size_t i = 0; i < image.pixels.size(); i += 3)
@@ -275,7 +276,8 @@ TEST(MapFigure, RefusesASizeOutOfBounds) {
 TEST(MapGrid, ListsCellsWithLatitudeLongitudeValueAndResidues) {
   const Globe globe = test_globe(3);
   const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
-  const std::string tsv = map_grid_tsv(globe, *find_globe_property(globe, "z"), locator, Projection::equirectangular, 36, 18);
+  const std::string tsv =
+      map_grid_tsv(globe, *find_globe_property(globe, "z"), locator, Projection::equirectangular, 36, 18);
   std::istringstream in(tsv);
   std::string line;
   std::getline(in, line);
@@ -303,8 +305,8 @@ TEST(HemisphereFigure, HasTheSizeIsNotBlankAndIsDeterministic) {
   const std::string one = hemisphere_figure(globe, *find_globe_property(globe, "octant"), options);
   options.threads = 2;
   EXPECT_EQ(one, hemisphere_figure(globe, *find_globe_property(globe, "octant"), options));
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                     ("spheremap-hemispheres-" + std::to_string(::getpid()) + ".png");
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("spheremap-hemispheres-" + std::to_string(::getpid()) + ".png");
   testing_support::write_text(path, one);
   const RgbImage image = read_png(path);
   std::filesystem::remove(path);

@@ -35,7 +35,10 @@ nlohmann::json hover(const ViewerData& data, const char* view, std::int32_t vert
 nlohmann::json colour_checks() {
   nlohmann::json checks = nlohmann::json::array();
   const auto add = [&](ScaleKind kind, ValueRange r, double value) {
-    checks.push_back({{"scale", std::string(to_string(kind))}, {"lo", r.lo}, {"hi", r.hi}, {"value", value},
+    checks.push_back({{"scale", std::string(to_string(kind))},
+                      {"lo", r.lo},
+                      {"hi", r.hi},
+                      {"value", value},
                       {"index", colour_index(kind, r, value)}});
   };
   for (const ScaleKind kind : {ScaleKind::sequential, ScaleKind::diverging, ScaleKind::categorical})
@@ -44,8 +47,8 @@ nlohmann::json colour_checks() {
         const double edge = r.lo + (r.hi - r.lo) * k / kColourTableSize;
         for (const double v : {edge, std::nextafter(edge, -1e300), std::nextafter(edge, 1e300)}) add(kind, r, v);
       }
-      for (const double v : {-1e300, 1e300, -0.5, 0.5, 2.5, 254.5, 255.5, 256.0, 7.0,
-                             std::numeric_limits<double>::quiet_NaN()})
+      for (const double v :
+           {-1e300, 1e300, -0.5, 0.5, 2.5, 254.5, 255.5, 256.0, 7.0, std::numeric_limits<double>::quiet_NaN()})
         add(kind, r, v);
     }
   return checks;

@@ -92,7 +92,7 @@ TEST(Viewer, PageHasItsPartsOnceAndNoPlaceholderLeft) {
   EXPECT_EQ(count(page, "<title>test map: bumpy sphere</title>"), 1u);
   EXPECT_EQ(count(page, "id=\"spheremap-manifest\""), 1u);
   EXPECT_EQ(count(page, "id=\"spheremap-data\""), 1u);
-  EXPECT_EQ(count(lower(page), "<script"), 3u);   // manifest, data, the viewer's script
+  EXPECT_EQ(count(lower(page), "<script"), 3u);  // manifest, data, the viewer's script
   EXPECT_EQ(count(lower(page), "</script"), 3u);
   EXPECT_EQ(count(page, "<!--"), 0u);
   EXPECT_EQ(count(page, "{{SPHEREMAP_"), 0u);
@@ -154,8 +154,10 @@ TEST(Viewer, EmbeddedDataReadsBackExactly) {
     const auto values = e.array<float>(m.at("values"));
     ASSERT_EQ(values.size(), n);
     for (std::size_t v = 0; v < n; ++v) {
-      if (std::isnan(p.values[v])) EXPECT_TRUE(std::isnan(values[v]));
-      else EXPECT_EQ(values[v], p.values[v]);
+      if (std::isnan(p.values[v]))
+        EXPECT_TRUE(std::isnan(values[v]));
+      else
+        EXPECT_EQ(values[v], p.values[v]);
     }
     const auto colours = e.array<std::uint8_t>(m.at("colours"));
     const ColourTable& table = colour_table(p.scale);

@@ -54,8 +54,8 @@ inline ViewerData make_viewer_test_map(int levels, int residues) {
   ViewerProperty potential{"electrostatics", "kT/e", ScaleKind::diverging, {-2, 2}, {}, {}};
   ViewerProperty b_factor{"b_factor", "Å²", ScaleKind::sequential, {}, {}, {}};
   ViewerProperty chain{"chain", "", ScaleKind::categorical, {0, 255}, {}, {"A", "B"}};
-  ViewerProperty octant{"octant", "", ScaleKind::categorical, {0, 255}, {},
-                        {"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z", "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"}};
+  ViewerProperty octant{"octant", "", ScaleKind::categorical,
+                        {0, 255}, {}, {"+x+y+z", "-x+y+z", "+x-y+z", "-x-y+z", "+x+y-z", "-x+y-z", "+x-y-z", "-x-y-z"}};
   std::vector<Vec3> seeds;
   for (int r = 0; r < residues; ++r) seeds.push_back(fibonacci_direction(r, residues));
   for (const Vec3& u : sphere.positions) {

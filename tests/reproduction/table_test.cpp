@@ -7,9 +7,9 @@
 
 #include "../test_support.hpp"
 #include "spheremap/error.hpp"
-#include "spheremap/reproduction/figure4.hpp"
 #include "spheremap/io/ply.hpp"
 #include "spheremap/pipeline/report.hpp"
+#include "spheremap/reproduction/figure4.hpp"
 #include "spheremap/shapes/shapes.hpp"
 
 namespace spheremap {
@@ -67,13 +67,39 @@ class Table : public testing_support::FolderTest {
     root_ = folder_;
     runs_ = root_ / "runs";
     const std::array<double, 8> clean{12.5, 12.5, 12.5, 12.5, 12.5, 12.5, 12.5, 12.5};
-    write_report("c/uniform", {"/data/c.pdb", "uniform", 200, false, 1, 3, false, 1, 3, 30, 900, 30, 35, 120,
+    write_report("c/uniform", {"/data/c.pdb",
+                               "uniform",
+                               200,
+                               false,
+                               1,
+                               3,
+                               false,
+                               1,
+                               3,
+                               30,
+                               900,
+                               30,
+                               35,
+                               120,
                                {20, 5, 12.5, 12.5, 12.5, 12.5, 12.5, 12.5}});
-    write_report("a/uniform", {"/data/a.pdb", "uniform", 100, true, 0, 0, false, 2, 0, 100, 400, 20, 25, 90,
+    write_report("a/uniform", {"/data/a.pdb",
+                               "uniform",
+                               100,
+                               true,
+                               0,
+                               0,
+                               false,
+                               2,
+                               0,
+                               100,
+                               400,
+                               20,
+                               25,
+                               90,
                                {10, 15, 12.5, 12.5, 12.5, 12.5, 12.5, 12.5}});
     write_report("b/uniform", {"/data/b.pdb", "uniform", 300, true, 0, 0, true, 0, 0, 50, 200, 10, 15, 60, clean});
     write_report("a/cotan", {"/data/a.pdb", "cotan", 100, true, 0, 0, false, 7, 1, 80, 300, 8, 9, 50, clean});
-    fs::create_directories(runs_ / "failed" / "uniform");        // an error run: no report.json
+    fs::create_directories(runs_ / "failed" / "uniform");             // an error run: no report.json
     write_text(runs_ / "b" / "uniform" / "report.json.tmp-99", "{");  // a write in progress
     // The typical surface (median triangle count: a 100, c 200, b 300) is c: triangle areas 1, 1, 2, 4
     // (mean 2): 50%, 50%, 100%, 200% of the mean.
@@ -167,11 +193,11 @@ TEST_F(Table, AggregatesTable1ByHand) {
   EXPECT_EQ(u.collapsed_total, 3);
   EXPECT_EQ(u.surfaces_without_folds, 2);
   EXPECT_EQ(u.surfaces_certified, 2);
-  EXPECT_DOUBLE_EQ(u.area_mean_of_means_percent, 60);    // (100 + 50 + 30) / 3
+  EXPECT_DOUBLE_EQ(u.area_mean_of_means_percent, 60);  // (100 + 50 + 30) / 3
   EXPECT_DOUBLE_EQ(u.area_max_of_means_percent, 100);
   EXPECT_DOUBLE_EQ(u.area_mean_of_maxima_percent, 500);  // (400 + 200 + 900) / 3
   EXPECT_DOUBLE_EQ(u.area_max_percent, 900);
-  EXPECT_DOUBLE_EQ(u.angle_mean_of_rms_degrees, 25);     // (25 + 15 + 35) / 3
+  EXPECT_DOUBLE_EQ(u.angle_mean_of_rms_degrees, 25);  // (25 + 15 + 35) / 3
   EXPECT_DOUBLE_EQ(u.angle_max_of_rms_degrees, 35);
   EXPECT_DOUBLE_EQ(u.angle_mean_of_means_degrees, 20);
   EXPECT_DOUBLE_EQ(u.angle_max_degrees, 120);
@@ -193,16 +219,27 @@ TEST_F(Table, MarkdownHasThePaperRowsAndOurs) {
   context.runs_dir = runs_.string();
   context.reports_found = 4;
   const std::string md = table1_markdown(summarize_protocols(recs), recs, context);
-  EXPECT_NE(md.find("| Uniform weighting | Rahi & Sharp | 77 | 3,000–6,000 | 0 (100%) | – | 104% (470%) | 25.0° (29.3°) | 4.9% |"),
-            std::string::npos) << md;
-  EXPECT_NE(md.find("| Cotangent weighting | Rahi & Sharp | 77 | 3,000–6,000 | 204 (55%) | – | 86% (446%) | 10.6° (19.6°) | 4.3% |"),
-            std::string::npos) << md;
-  EXPECT_NE(md.find("| Uniform weighting | **spheremap** | 3 | 100–300 | 3 (33%) | 1 (67%) | 60% (100%) | 25.0° (35.0°) | 2.3% |"),
-            std::string::npos) << md;
-  EXPECT_NE(md.find("| Cotangent weighting | **spheremap** | 1 | 100–100 | 7 (0%) | 0 (100%) | 80% (80%) | 9.0° (9.0°) | 0.0% |"),
-            std::string::npos) << md;
+  EXPECT_NE(md.find("| Uniform weighting | Rahi & Sharp | 77 | 3,000–6,000 | 0 (100%) | – | 104% (470%) | 25.0° "
+                    "(29.3°) | 4.9% |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| Cotangent weighting | Rahi & Sharp | 77 | 3,000–6,000 | 204 (55%) | – | 86% (446%) | 10.6° "
+                    "(19.6°) | 4.3% |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| Uniform weighting | **spheremap** | 3 | 100–300 | 3 (33%) | 1 (67%) | 60% (100%) | 25.0° "
+                    "(35.0°) | 2.3% |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(
+      md.find(
+          "| Cotangent weighting | **spheremap** | 1 | 100–100 | 7 (0%) | 0 (100%) | 80% (80%) | 9.0° (9.0°) | 0.0% |"),
+      std::string::npos)
+      << md;
   EXPECT_NE(md.find("(4 found)"), std::string::npos);
-  EXPECT_NE(md.find("`c/uniform/report.json` | c.pdb | uniform | yes | 200 | 1 | 3 | 1 | 3 | **no** |"), std::string::npos) << md;
+  EXPECT_NE(md.find("`c/uniform/report.json` | c.pdb | uniform | yes | 200 | 1 | 3 | 1 | 3 | **no** |"),
+            std::string::npos)
+      << md;
   // Same input, same bytes.
   EXPECT_EQ(md, table1_markdown(summarize_protocols(recs), recs, context));
 }

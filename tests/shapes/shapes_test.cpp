@@ -30,7 +30,9 @@ std::vector<int> vertex_degrees(const Mesh& mesh) {
   return degree;
 }
 
-std::int64_t edge_key(std::int32_t a, std::int32_t b) { return (static_cast<std::int64_t>(a) << 32) | static_cast<std::uint32_t>(b); }
+std::int64_t edge_key(std::int32_t a, std::int32_t b) {
+  return (static_cast<std::int64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
 
 /// Closed, consistently oriented, vertex-manifold, connected, Euler characteristic 2 (so a sphere),
 /// outward (positive volume), no degenerate index triples, no duplicate vertex positions.
@@ -50,10 +52,12 @@ void expect_oriented_sphere(const Mesh& mesh) {
     }
   }
   std::sort(directed.begin(), directed.end());
-  ASSERT_EQ(std::adjacent_find(directed.begin(), directed.end()), directed.end()) << "edge used twice in the same direction";
+  ASSERT_EQ(std::adjacent_find(directed.begin(), directed.end()), directed.end())
+      << "edge used twice in the same direction";
   for (const auto key : directed) {
     const auto a = static_cast<std::int32_t>(key >> 32), b = static_cast<std::int32_t>(key & 0xffffffff);
-    ASSERT_TRUE(std::binary_search(directed.begin(), directed.end(), edge_key(b, a))) << "edge " << a << "-" << b << " has no opposite";
+    ASSERT_TRUE(std::binary_search(directed.begin(), directed.end(), edge_key(b, a)))
+        << "edge " << a << "-" << b << " has no opposite";
   }
 
   // Each vertex's triangles form one closed fan: following "after b comes c" from any start visits all.
@@ -86,12 +90,14 @@ void expect_oriented_sphere(const Mesh& mesh) {
   for (std::int32_t v = 0; v < vertex_count; ++v) ASSERT_EQ(root(v), root(0)) << "disconnected";
 
   const auto edges = static_cast<std::int64_t>(directed.size() / 2);
-  EXPECT_EQ(static_cast<std::int64_t>(mesh.vertex_count()) - edges + static_cast<std::int64_t>(mesh.triangle_count()), 2);
+  EXPECT_EQ(static_cast<std::int64_t>(mesh.vertex_count()) - edges + static_cast<std::int64_t>(mesh.triangle_count()),
+            2);
   EXPECT_GT(signed_volume(mesh), 0);
 
   std::vector<Vec3> sorted_positions = mesh.positions;
   std::sort(sorted_positions.begin(), sorted_positions.end());
-  EXPECT_EQ(std::adjacent_find(sorted_positions.begin(), sorted_positions.end()), sorted_positions.end()) << "duplicate vertex";
+  EXPECT_EQ(std::adjacent_find(sorted_positions.begin(), sorted_positions.end()), sorted_positions.end())
+      << "duplicate vertex";
 }
 
 /// For a convex mesh around the origin every face normal points away from the origin.
@@ -243,7 +249,8 @@ TEST(ShapesEdgeFlips, IsDeterministicAndSeedDependent) {
 
 TEST(ShapesEdgeFlips, AllEdgesTriedStillValidOnCubeAndDumbbell) {
   // Probability 1 exercises every rejection rule; flat cube faces make many flips legal.
-  for (const Mesh& input : {make_subdivided_cube(4), make_dumbbell(4, 0.05, 40, 16), perturb_vertices(make_icosphere(3), 0.3, 5)}) {
+  for (const Mesh& input :
+       {make_subdivided_cube(4), make_dumbbell(4, 0.05, 40, 16), perturb_vertices(make_icosphere(3), 0.3, 5)}) {
     const Mesh flipped = random_edge_flips(input, 1.0, 3);
     expect_oriented_sphere(flipped);
     const auto degrees = vertex_degrees(flipped);

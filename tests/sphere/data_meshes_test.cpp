@@ -29,21 +29,22 @@ TEST_P(DataGenusZeroMesh, MapsCertified) {
   RecordProperty("plain_collapsed", std::to_string(result.map.diagnostics.repair.plain_certificate.collapsed));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Data, DataGenusZeroMesh,
-    testing::Values("ajc_beast.obj", "ajc_homer.obj", "ajc_horse.ply", "ajc_nefertiti.obj", "ajc_spot.obj",
-                    "bff_box.obj", "bff_bunny.obj", "bff_fish.obj", "dgp_bunny_1k.obj", "dgp_sphere_hoppe.obj",
-                    "gc_fox.ply", "gc_spot.ply", "libigl_arm.obj", "libigl_armadillo.obj", "libigl_bumpy-cube.obj",
-                    "libigl_bumpy.off", "libigl_bunny.off", "libigl_cheburashka.off", "libigl_decimated-knight.off",
-                    "libigl_decimated-max.obj", "libigl_elephant.obj", "libigl_horse_quad.obj",
-                    "libigl_screwdriver.off", "libigl_sphere.obj", "pmp_bunny.off", "pmp_bunny_adaptive.off",
-                    "pmp_sphere.off"),
-    [](const testing::TestParamInfo<std::string>& info) {
-      std::string name = info.param;
-      for (auto& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Data, DataGenusZeroMesh,
+                         testing::Values("ajc_beast.obj", "ajc_homer.obj", "ajc_horse.ply", "ajc_nefertiti.obj",
+                                         "ajc_spot.obj", "bff_box.obj", "bff_bunny.obj", "bff_fish.obj",
+                                         "dgp_bunny_1k.obj", "dgp_sphere_hoppe.obj", "gc_fox.ply", "gc_spot.ply",
+                                         "libigl_arm.obj", "libigl_armadillo.obj", "libigl_bumpy-cube.obj",
+                                         "libigl_bumpy.off", "libigl_bunny.off", "libigl_cheburashka.off",
+                                         "libigl_decimated-knight.off", "libigl_decimated-max.obj",
+                                         "libigl_elephant.obj", "libigl_horse_quad.obj", "libigl_screwdriver.off",
+                                         "libigl_sphere.obj", "pmp_bunny.off", "pmp_bunny_adaptive.off",
+                                         "pmp_sphere.off"),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (auto& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
 
 struct Refusal {
   std::string file;

@@ -5,8 +5,8 @@
 #include "../test_support.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <iostream>
+#include <numbers>
 #include <random>
 
 #include "spheremap/error.hpp"
@@ -70,7 +70,8 @@ TEST(SphereMap, BipyramidsWithGraphDiameterTwoAreMappedThroughARefinement) {
     PolygonSoup soup;
     soup.positions = {{0, 0, 1}, {0, 0, -1}};
     for (int k = 0; k < equator; ++k)
-      soup.positions.push_back({std::cos(2 * std::numbers::pi * k / equator), std::sin(2 * std::numbers::pi * k / equator), 0});
+      soup.positions.push_back(
+          {std::cos(2 * std::numbers::pi * k / equator), std::sin(2 * std::numbers::pi * k / equator), 0});
     for (int k = 0; k < equator; ++k) {
       const int a = 2 + k, b = 2 + (k + 1) % equator;
       soup.faces.push_back({0, a, b});
@@ -120,7 +121,8 @@ TEST(SphereMap, DividingEdgeThroughAPoleIsSplitAndRecorded) {
       // The degree-3 vertex is a ring vertex of each neighbour's pole: take a neighbour as pole.
       const std::int32_t pole = rings.ring(v)[0];
       const auto distance = graph_distances(rings, pole);
-      const auto south = static_cast<std::int32_t>(std::max_element(distance.begin(), distance.end()) - distance.begin());
+      const auto south =
+          static_cast<std::int32_t>(std::max_element(distance.begin(), distance.end()) - distance.begin());
       MapOptions options;
       options.poles = std::make_pair(pole, south);
       const auto map = map_to_sphere(mesh, options);
@@ -188,10 +190,14 @@ TEST(SphereMap, PhiIncreasesEastwardSoTheMapIsNotAMirrorImage) {
 TEST(SphereMap, MapMetadataFollowsThePaper) {
   const Mesh mesh = prepared(make_icosphere(3));
   const auto map = map_to_sphere(mesh);
-  const auto distance = graph_distances(build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles), map.poles.north);
+  const auto distance = graph_distances(
+      build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles), map.poles.north);
   EXPECT_EQ(map.poles.graph_distance, distance[map.poles.south]);
   EXPECT_DOUBLE_EQ(map.diagnostics.construction.theta0, std::numbers::pi / map.poles.graph_distance);
-  EXPECT_NEAR(map.diagnostics.construction.mercator_c, 1.0 / std::log((1 + std::cos(map.diagnostics.construction.theta0)) / std::sin(map.diagnostics.construction.theta0)), 1e-15);
+  EXPECT_NEAR(map.diagnostics.construction.mercator_c,
+              1.0 / std::log((1 + std::cos(map.diagnostics.construction.theta0)) /
+                             std::sin(map.diagnostics.construction.theta0)),
+              1e-15);
   EXPECT_GE(map.diagnostics.construction.meridian.size(), 2u);
 }
 

@@ -50,7 +50,8 @@ bool adjacent(const VertexRings& rings, std::int32_t a, std::int32_t b) {
 void expect_valid_meridian(const Fixture& f, const std::vector<std::int32_t>& path) {
   ASSERT_GE(path.size(), 2u);
   const auto north_ring = f.rings.ring(f.north), south_ring = f.rings.ring(f.south);
-  const std::set<std::int32_t> on_north(north_ring.begin(), north_ring.end()), on_south(south_ring.begin(), south_ring.end());
+  const std::set<std::int32_t> on_north(north_ring.begin(), north_ring.end()),
+      on_south(south_ring.begin(), south_ring.end());
   EXPECT_TRUE(on_north.count(path.front()));
   EXPECT_TRUE(on_south.count(path.back()));
   EXPECT_EQ(std::set<std::int32_t>(path.begin(), path.end()).size(), path.size()) << "a vertex repeats";

@@ -98,9 +98,11 @@ TEST(Reweighting, DeepNarrowPocketIsCertifiedInFewRounds) {
   // undo in 40 rounds (the previous repair: 40 rounds, 1,819 triangles still collapsed).
   EXPECT_GT(map.diagnostics.repair.plain_certificate.collapsed, 1000);
   EXPECT_LT(map.diagnostics.repair.plain_certificate.min_area_ratio, 1e-15);
-  EXPECT_TRUE(map.certificate.certified()) << map.certificate.folded << " folded, " << map.certificate.collapsed
-                                           << " collapsed after " << map.diagnostics.repair.reweighting_rounds << " rounds";
-  EXPECT_LE(map.diagnostics.repair.reweighting_rounds - map.diagnostics.repair.equalizing_rounds, 8);  // rounds until certified
+  EXPECT_TRUE(map.certificate.certified())
+      << map.certificate.folded << " folded, " << map.certificate.collapsed << " collapsed after "
+      << map.diagnostics.repair.reweighting_rounds << " rounds";
+  EXPECT_LE(map.diagnostics.repair.reweighting_rounds - map.diagnostics.repair.equalizing_rounds,
+            8);  // rounds until certified
   EXPECT_EQ(map.diagnostics.repair.plain_certificate.folded, 0);
 }
 
@@ -110,8 +112,9 @@ TEST(Reweighting, ThinFingerLeadingToNeitherPoleIsCertifiedInFewRounds) {
   options.poles = std::make_pair(nearest_vertex(mesh, {0, 0, 1}), nearest_vertex(mesh, {0, 0, -1}));
   const auto map = map_to_sphere(mesh, options);
   EXPECT_GT(map.diagnostics.repair.plain_certificate.collapsed, 1000);
-  EXPECT_TRUE(map.certificate.certified()) << map.certificate.folded << " folded, " << map.certificate.collapsed
-                                           << " collapsed after " << map.diagnostics.repair.reweighting_rounds << " rounds";
+  EXPECT_TRUE(map.certificate.certified())
+      << map.certificate.folded << " folded, " << map.certificate.collapsed << " collapsed after "
+      << map.diagnostics.repair.reweighting_rounds << " rounds";
   EXPECT_LE(map.diagnostics.repair.reweighting_rounds - map.diagnostics.repair.equalizing_rounds, 8);
 }
 
@@ -149,9 +152,11 @@ TEST(Reweighting, PlainAlgorithmIsReportedUnchangedByTheRepair) {
   plain_options.repair = false;
   const auto plain = map_to_sphere(mesh, plain_options);
   const auto repaired = map_to_sphere(mesh);
-  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.collapsed, repaired.diagnostics.repair.plain_certificate.collapsed);
+  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.collapsed,
+            repaired.diagnostics.repair.plain_certificate.collapsed);
   EXPECT_EQ(plain.diagnostics.repair.plain_certificate.folded, repaired.diagnostics.repair.plain_certificate.folded);
-  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.min_area_ratio, repaired.diagnostics.repair.plain_certificate.min_area_ratio);
+  EXPECT_EQ(plain.diagnostics.repair.plain_certificate.min_area_ratio,
+            repaired.diagnostics.repair.plain_certificate.min_area_ratio);
   EXPECT_EQ(plain.diagnostics.repair.reweighting_rounds, 0);
   EXPECT_FALSE(plain.certificate.certified());
 }
@@ -189,9 +194,10 @@ TEST(Reweighting, ReusedFactorizationMatchesFreshSolves) {
   // with `last` taken out and moved to the end. On this mesh CHOLMOD factors the first as LL'
   // (supernodal) and the second as LDL' (simplicial): the leading-block solve must hold for both (it once
   // assumed LL' and gave a wrong φ with a simplicial factor).
-  const std::vector<detail::EliminationOrder> orders{detail::geometric_elimination_order(rings, mesh.positions, always_fixed),
-                                                    detail::metis_elimination_order(rings, mesh.positions, always_fixed),
-                                                    detail::amd_elimination_order(rings, mesh.positions, always_fixed)};
+  const std::vector<detail::EliminationOrder> orders{
+      detail::geometric_elimination_order(rings, mesh.positions, always_fixed),
+      detail::metis_elimination_order(rings, mesh.positions, always_fixed),
+      detail::amd_elimination_order(rings, mesh.positions, always_fixed)};
   ASSERT_EQ(orders[1].method, FillReducingOrder::kMetis);
   ASSERT_EQ(orders[2].method, FillReducingOrder::kAmd);
   std::vector<bool> supernodal;
@@ -243,8 +249,9 @@ TEST(Reweighting, CholmodOrdersAreRepeatablePermutationsOfTheUnknowns) {
   const detail::ReusableCholesky by_geometry(rings, geometric);
   EXPECT_GT(by_geometry.flops(), 0);
   using Ordering = detail::EliminationOrder (*)(const VertexRings&, const std::vector<Vec3>&, const std::vector<char>&);
-  for (const auto& [method, ordering] : {std::pair<FillReducingOrder, Ordering>{FillReducingOrder::kMetis, detail::metis_elimination_order},
-                                         std::pair<FillReducingOrder, Ordering>{FillReducingOrder::kAmd, detail::amd_elimination_order}}) {
+  for (const auto& [method, ordering] :
+       {std::pair<FillReducingOrder, Ordering>{FillReducingOrder::kMetis, detail::metis_elimination_order},
+        std::pair<FillReducingOrder, Ordering>{FillReducingOrder::kAmd, detail::amd_elimination_order}}) {
     SCOPED_TRACE(to_string(method));
     const auto order = ordering(rings, mesh.positions, always_fixed);
     ASSERT_EQ(order.method, method);

@@ -31,7 +31,8 @@ void expect_never_silently_folded(const Mesh& mesh, const std::string& name) {
     EXPECT_EQ(clearly_folded, 0) << name << ": certified, but folded by an independent check";
     EXPECT_NEAR(c.coverage, 1.0, 1e-9) << name;
   } else {
-    EXPECT_GT(c.folded + c.collapsed + (std::abs(c.coverage - 1) >= 1e-9), 0) << name << ": uncertified without a reason";
+    EXPECT_GT(c.folded + c.collapsed + (std::abs(c.coverage - 1) >= 1e-9), 0)
+        << name << ": uncertified without a reason";
     EXPECT_GE(c.folded, clearly_folded) << name << ": folds the certificate does not count";
     EXPECT_NE(summary_text(result).find("NOT"), std::string::npos) << name << ": not said plainly";
   }

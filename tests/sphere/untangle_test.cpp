@@ -69,8 +69,8 @@ TEST(Untangling, OneFrameServesSeveralMapsAsAFreshOneWould) {
     ASSERT_GT(before.folded, 0) << "vertex " << v << ": the test's fold folded nothing";
     std::vector<Vec3> with_fresh = with_shared;
     const auto moves = detail::untangle_on_sphere(mesh, rings, shared, with_shared, kDefaultCollapseFloor, 200);
-    const auto fresh_moves =
-        detail::untangle_on_sphere(mesh, rings, detail::untangling_frame(mesh, rings), with_fresh, kDefaultCollapseFloor, 200);
+    const auto fresh_moves = detail::untangle_on_sphere(mesh, rings, detail::untangling_frame(mesh, rings), with_fresh,
+                                                        kDefaultCollapseFloor, 200);
     EXPECT_GT(moves, 0);
     EXPECT_EQ(moves, fresh_moves);
     EXPECT_EQ(with_shared, with_fresh) << "vertex " << v;

@@ -45,8 +45,10 @@ double largest_gap(const std::vector<Part>& parts) {
   double gap = 0, first_gap = -1;  // first_gap: the gap that starts at angle 0, if any
   for (const auto& [start, end] : spans) {
     if (start > reached) {
-      if (reached == 0 && first_gap < 0) first_gap = start;
-      else gap = std::max(gap, start - reached);
+      if (reached == 0 && first_gap < 0)
+        first_gap = start;
+      else
+        gap = std::max(gap, start - reached);
     }
     reached = std::max(reached, end);
   }

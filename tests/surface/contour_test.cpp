@@ -29,12 +29,14 @@ TEST(Contour, SphereIsAClosedOutwardGenusZeroSurfaceWithTheRightArea) {
   EXPECT_EQ(prepared.report.genus, 0);
   EXPECT_EQ(prepared.report.triangles_flipped, 0) << "triangles must face outward";
   double area = 0;
-  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+  for (const auto& t : mesh.triangles)
+    area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
   EXPECT_NEAR(area / (4 * std::numbers::pi * radius * radius), 1.0, 0.02);
   for (const auto& p : mesh.positions) EXPECT_NEAR(norm(p), radius, 0.05);
   // Straight into the mapper.
   const auto map = map_to_sphere(prepared.mesh);
-  EXPECT_TRUE(map.certificate.certified()) << map.certificate.folded << " folded, " << map.certificate.collapsed << " collapsed";
+  EXPECT_TRUE(map.certificate.certified())
+      << map.certificate.folded << " folded, " << map.certificate.collapsed << " collapsed";
 }
 
 TEST(Contour, TorusHasGenusOne) {
@@ -46,7 +48,8 @@ TEST(Contour, TorusHasGenusOne) {
   expect_closed_oriented_manifold(mesh);
   // V - E + F = 0 for a torus.
   const auto edges = static_cast<std::int64_t>(mesh.triangles.size()) * 3 / 2;
-  EXPECT_EQ(static_cast<std::int64_t>(mesh.vertex_count()) - edges + static_cast<std::int64_t>(mesh.triangle_count()), 0);
+  EXPECT_EQ(static_cast<std::int64_t>(mesh.vertex_count()) - edges + static_cast<std::int64_t>(mesh.triangle_count()),
+            0);
 }
 
 TEST(Contour, RandomFieldsAlwaysGiveClosedManifolds) {
@@ -58,7 +61,8 @@ TEST(Contour, RandomFieldsAlwaysGiveClosedManifolds) {
     for (std::int64_t k = 0; k < grid.size[2]; ++k)
       for (std::int64_t j = 0; j < grid.size[1]; ++j)
         for (std::int64_t i = 0; i < grid.size[0]; ++i) {
-          const bool border = i == 0 || j == 0 || k == 0 || i == grid.size[0] - 1 || j == grid.size[1] - 1 || k == grid.size[2] - 1;
+          const bool border =
+              i == 0 || j == 0 || k == 0 || i == grid.size[0] - 1 || j == grid.size[1] - 1 || k == grid.size[2] - 1;
           // Many exact ties with the level too (value 0 counts as outside).
           grid.values[grid.index(i, j, k)] = border ? -1.0 : static_cast<double>(static_cast<int>(random() % 5) - 2);
         }
@@ -86,7 +90,8 @@ TEST(Contour, TheMinimumFractionKeepsVerticesOffSamplesAndZeroInterpolatesPlainl
   expect_closed_oriented_manifold(midpoints);
   for (const auto& p : midpoints.positions) {
     int halves = 0;
-    for (const double x : p) halves += std::abs(x * 2 - std::round(x * 2)) < 1e-12 && std::abs(x - std::round(x)) > 0.25;
+    for (const double x : p)
+      halves += std::abs(x * 2 - std::round(x * 2)) < 1e-12 && std::abs(x - std::round(x)) > 0.25;
     EXPECT_GE(halves, 1) << p[0] << " " << p[1] << " " << p[2];
   }
 }

@@ -15,7 +15,8 @@ double brute_force(const Grid3<double>& start, std::int64_t i, std::int64_t j, s
   for (std::int64_t c = 0; c < start.size[2]; ++c)
     for (std::int64_t b = 0; b < start.size[1]; ++b)
       for (std::int64_t a = 0; a < start.size[0]; ++a)
-        best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) + start.values[start.index(a, b, c)]);
+        best = std::min(best, static_cast<double>((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)) +
+                                  start.values[start.index(a, b, c)]);
   return best;
 }
 
@@ -34,7 +35,8 @@ void expect_in_place_matches_brute_force(const Grid3<double>& start) {
         for (std::int64_t i = 0; i < start.size[0]; ++i) {
           const double expected = brute_force(start, i, j, k);
           ASSERT_EQ(d.values[d.index(i, j, k)], expected) << threads << " " << i << " " << j << " " << k;
-          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected) << threads << " " << i << " " << j << " " << k;
+          ASSERT_EQ(static_cast<double>(f.values[f.index(i, j, k)]), expected)
+              << threads << " " << i << " " << j << " " << k;
         }
   }
 }
@@ -66,7 +68,8 @@ TEST(DistanceTransform, InPlaceWithAnyStartValuesInDoubleAndFloatAndAnyThreads) 
   Grid3<double> start;
   start.size = {23, 9, 14};  // wider than one block of lines along x
   start.values.resize(static_cast<std::size_t>(start.count()));
-  for (auto& v : start.values) v = random() % 4 == 0 ? static_cast<double>(random() % 50) : std::numeric_limits<double>::infinity();
+  for (auto& v : start.values)
+    v = random() % 4 == 0 ? static_cast<double>(random() % 50) : std::numeric_limits<double>::infinity();
   ASSERT_NO_FATAL_FAILURE(expect_in_place_matches_brute_force(start));
 }
 
@@ -80,16 +83,21 @@ TEST(DistanceTransform, EveryKindOfLineMatchesBruteForce) {
     start.values.resize(static_cast<std::size_t>(start.count()));
     for (auto& v : start.values) {
       const bool target = random() % 5 == 0;
-      v = !target ? std::numeric_limits<double>::infinity() : kind == 0 ? 0.0 : kind == 1 ? static_cast<double>(random() % 40) : 0.25 * (random() % 160);
+      v = !target     ? std::numeric_limits<double>::infinity()
+          : kind == 0 ? 0.0
+          : kind == 1 ? static_cast<double>(random() % 40)
+                      : 0.25 * (random() % 160);
     }
     for (std::int64_t i = 0; i < start.size[0]; ++i) start.values[start.index(i, 2, 2)] = 0;  // an all-zero row
-    for (std::int64_t i = 0; i < start.size[0]; ++i) start.values[start.index(i, 3, 3)] = std::numeric_limits<double>::infinity();
+    for (std::int64_t i = 0; i < start.size[0]; ++i)
+      start.values[start.index(i, 3, 3)] = std::numeric_limits<double>::infinity();
     Grid3<double> d = start;
     squared_distance_transform_in_place(d, 2);
     for (std::int64_t k = 0; k < start.size[2]; ++k)
       for (std::int64_t j = 0; j < start.size[1]; ++j)
         for (std::int64_t i = 0; i < start.size[0]; ++i) {
-          ASSERT_EQ(d.values[d.index(i, j, k)], brute_force(start, i, j, k)) << kind << " " << i << " " << j << " " << k;
+          ASSERT_EQ(d.values[d.index(i, j, k)], brute_force(start, i, j, k))
+              << kind << " " << i << " " << j << " " << k;
         }
   }
 }
@@ -108,7 +116,8 @@ TEST(DistanceTransform, ZeroSurroundingsAsInAMoleculesGrid) {
         for (std::int64_t i = 0; i < start.size[0]; ++i) {
           const double d2 = (i - ci) * (i - ci) + (j - cj) * (j - cj) + (k - ck) * (k - ck);
           if (d2 < radius * radius)
-            start.values[start.index(i, j, k)] = random() % 3 == 0 ? static_cast<double>(random() % 30 + 1) : std::numeric_limits<double>::infinity();
+            start.values[start.index(i, j, k)] =
+                random() % 3 == 0 ? static_cast<double>(random() % 30 + 1) : std::numeric_limits<double>::infinity();
         }
   };
   blob(7, 6, 5, 4.5);

@@ -49,9 +49,11 @@ TEST(NearestAtoms, AnyPointsGetTheNearestSphereAsBruteForceFindsIt) {
   std::uniform_real_distribution<double> unit(0, 1);
   std::vector<Atom> atoms;
   for (int a = 0; a < 300; ++a)
-    atoms.push_back(atom_at({20 * unit(random), 20 * unit(random), 20 * unit(random)}, 1.2 + 0.8 * unit(random), 1000 + a));
+    atoms.push_back(
+        atom_at({20 * unit(random), 20 * unit(random), 20 * unit(random)}, 1.2 + 0.8 * unit(random), 1000 + a));
   Mesh mesh;
-  for (int v = 0; v < 20000; ++v) mesh.positions.push_back({-4 + 28 * unit(random), -4 + 28 * unit(random), -4 + 28 * unit(random)});
+  for (int v = 0; v < 20000; ++v)
+    mesh.positions.push_back({-4 + 28 * unit(random), -4 + 28 * unit(random), -4 + 28 * unit(random)});
   mesh.positions.push_back({200, -50, 3});  // far from every atom
   mesh.positions.push_back({-60, 0, 0});
   for (int threads : {1, 2, 3}) {
@@ -70,7 +72,8 @@ TEST(NearestAtoms, TiesGoToTheSmallestIndexAndCellBordersLoseNothing) {
   Mesh mesh;
   for (int x = 0; x <= 10; ++x)
     for (int y = -2; y <= 8; ++y)
-      for (int z = -2; z <= 4; ++z) mesh.positions.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)});
+      for (int z = -2; z <= 4; ++z)
+        mesh.positions.push_back({static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)});
   for (int y = -20; y <= 80; ++y) mesh.positions.push_back({5, 0.1 * y, 1.0 / 3.0});
   add_nearest_atoms(mesh, atoms, SurfaceOptions{});
   expect_brute_force(mesh, atoms);

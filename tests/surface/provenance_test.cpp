@@ -48,7 +48,8 @@ TEST(Provenance, EveryVertexGetsEveryFieldOfItsAtom) {
 // B-factors (PDB, mmCIF) and charges (PQR) follow each vertex's atom; a value the atoms do not have is
 // not written (no made-up zeros), and one left from an earlier call is removed.
 TEST(Provenance, BFactorsAndChargesFollowTheAtomsThatHaveThem) {
-  std::vector<Atom> atoms = {make_atom(7, "CA", "C", "LYS", 42, ' ', "A", 1), make_atom(9, "OG", "O", "SER", 52, ' ', "A", 1)};
+  std::vector<Atom> atoms = {make_atom(7, "CA", "C", "LYS", 42, ' ', "A", 1),
+                             make_atom(9, "OG", "O", "SER", 52, ' ', "A", 1)};
   atoms[0].b_factor = 15.23, atoms[1].b_factor = 7.5;
   Mesh mesh;
   mesh.positions.resize(3);

@@ -4,10 +4,10 @@
 
 #include "../test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <algorithm>
 
 #include "spheremap/attributes.hpp"
 #include "spheremap/error.hpp"
@@ -22,7 +22,8 @@ using testing_support::atom_at;
 
 double area_of(const Mesh& mesh) {
   double area = 0;
-  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+  for (const auto& t : mesh.triangles)
+    area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
   return area;
 }
 
@@ -84,7 +85,8 @@ TEST(Ses, ThreeAtomsInARowHaveTwoIndependentNecks) {
 
 TEST(Ses, EveryVertexCarriesItsNearestAtom) {
   std::vector<Atom> atoms;
-  for (int k = 0; k < 12; ++k) atoms.push_back(atom_at({1.3 * k, 0.7 * (k % 3), 0.4 * (k % 2)}, 1.5 + 0.05 * k, 100 + k));
+  for (int k = 0; k < 12; ++k)
+    atoms.push_back(atom_at({1.3 * k, 0.7 * (k % 3), 0.4 * (k % 2)}, 1.5 + 0.05 * k, 100 + k));
   const Mesh mesh = solvent_excluded_surface(atoms, SurfaceOptions{});
   const auto& index = mesh.integer_attributes.at(attributes::kAtomId);
   const auto& serial = mesh.integer_attributes.at(attributes::kAtomSerial);
@@ -230,7 +232,8 @@ TEST(Ses, ResultsDoNotDependOnTheNumberOfThreads) {
   const Mesh from_double = surface_from_field(field, atoms, options);
   expect_closed_oriented_manifold(mesh);
   ASSERT_EQ(from_double.triangles, mesh.triangles);
-  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) ASSERT_LT(norm(from_double.positions[v] - mesh.positions[v]), 1e-4 * options.grid);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+    ASSERT_LT(norm(from_double.positions[v] - mesh.positions[v]), 1e-4 * options.grid);
 }
 
 TEST(Ses, TheBudgetCountsOneValuePerSample) {
@@ -284,10 +287,12 @@ TEST(DataSes, OuterAreaAndVolumeMatchMsmsAtBothProbesAndGrids) {
         const auto outer = components_of(mesh).front();
         EXPECT_NEAR(outer.first / msms, 1.0, 0.005) << outer.first << " Å² against MSMS " << msms;
         if (probe == 1.4 && reference.volume14 > 0)
-          EXPECT_NEAR(outer.second / reference.volume14, 1.0, 0.001) << outer.second << " Å³ against MSMS " << reference.volume14;
+          EXPECT_NEAR(outer.second / reference.volume14, 1.0, 0.001)
+              << outer.second << " Å³ against MSMS " << reference.volume14;
         options.contour_minimum_fraction = 0;
         const double plain = components_of(surface_from_field(field, molecule.atoms, options)).front().first;
-        EXPECT_NEAR(plain / msms, 1.0, grid == 0.5 ? 0.01 : 0.005) << plain << " Å² (no vertex clamp) against MSMS " << msms;
+        EXPECT_NEAR(plain / msms, 1.0, grid == 0.5 ? 0.01 : 0.005)
+            << plain << " Å² (no vertex clamp) against MSMS " << msms;
       }
   }
 }

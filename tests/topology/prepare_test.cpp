@@ -122,8 +122,8 @@ TEST(Prepare, KeepsTheInputVertexOrderAndMapsInputIndices) {
   }
   // A welded duplicate maps to its representative; an unused vertex to -1.
   auto soup = tetrahedron_soup();
-  soup.positions.push_back({5, 5, 5});     // 4: unused
-  soup.positions.push_back({1, 0, 0});     // 5: duplicate of 1
+  soup.positions.push_back({5, 5, 5});  // 4: unused
+  soup.positions.push_back({1, 0, 0});  // 5: duplicate of 1
   soup.faces[1] = {0, 5, 3};
   const auto welded = prepare_mesh(soup);
   EXPECT_EQ(welded.report.vertex_of_input[4], -1);

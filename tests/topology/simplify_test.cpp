@@ -7,8 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "../test_support.hpp"
 #include "../../src/topology/simplify_tuning.hpp"
+#include "../test_support.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/shapes/shapes.hpp"
@@ -37,7 +37,8 @@ double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 double distance_to_mesh(const Vec3& p, const Mesh& mesh) {
   double nearest = INFINITY;
   for (const auto& t : mesh.triangles)
-    nearest = std::min(nearest, distance_to_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]));
+    nearest =
+        std::min(nearest, distance_to_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]));
   return nearest;
 }
 
@@ -47,8 +48,8 @@ Mesh make_torus(double major, double minor, int n, int m) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
       const double u = 2 * std::numbers::pi * i / n, v = 2 * std::numbers::pi * j / m;
-      mesh.positions.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
-                                minor * std::sin(v)});
+      mesh.positions.push_back({(major + minor * std::cos(v)) * std::cos(u),
+                                (major + minor * std::cos(v)) * std::sin(u), minor * std::sin(v)});
     }
   auto index = [&](int i, int j) { return static_cast<std::int32_t>(((i + n) % n) * m + (j + m) % m); };
   for (int i = 0; i < n; ++i)

@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/shapes/shapes.hpp"
 #include "spheremap/topology/components.hpp"
 #include "spheremap/topology/connectivity.hpp"
-#include "../test_support.hpp"
 
 namespace spheremap {
 namespace {

@@ -13,9 +13,9 @@ namespace spheremap {
 /// where s_i are unit sphere points and p_i the surface points (Kearsley 1989 quaternion method).
 struct Superposition {
   std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
-  Vec3 centroid{0, 0, 0};   // centroid of the surface vertices
-  double scale = 1;         // RMS distance of surface vertices to their centroid
-  double rmsd = 0;          // sqrt(mean |R s_i * scale - (p_i - centroid)|²), in surface units
+  Vec3 centroid{0, 0, 0};                                     // centroid of the surface vertices
+  double scale = 1;                                           // RMS distance of surface vertices to their centroid
+  double rmsd = 0;  // sqrt(mean |R s_i * scale - (p_i - centroid)|²), in surface units
 };
 
 /// The superposition of `sphere_points` (unit vectors) onto `surface_points`, point i onto point i.

@@ -72,12 +72,11 @@ struct Molecule {
 /// Reads PDB, mmCIF (both optionally .gz) through gemmi (B-factors too), or PQR (radius and charge columns), chosen by
 /// extension (.pdb .ent .cif .mmcif .pqr, with an optional .gz). Keeps, by default, the first model,
 /// the most occupied alternate location of each residue (ties: the first letter), no hydrogens (but a
-/// PQR's, whose atoms of radius 0 count for charge and make no surface), no waters, all other HETATM groups and all chains; radii from Bondi (1964) per element unless
-/// options.radii or the PQR file say otherwise; unknown elements get kUnknownElementRadius and a
-/// warning naming them.
-/// A .gz file is inflated whole and must be complete (CRC and length checked). Signs of a truncated file
-/// (a last line without its line break, a last atom record shorter than the others) are warnings in the
-/// report; options.strict makes every warning an error. Text read from the file (names, chains,
+/// PQR's, whose atoms of radius 0 count for charge and make no surface), no waters, all other HETATM groups and all
+/// chains; radii from Bondi (1964) per element unless options.radii or the PQR file say otherwise; unknown elements get
+/// kUnknownElementRadius and a warning naming them. A .gz file is inflated whole and must be complete (CRC and length
+/// checked). Signs of a truncated file (a last line without its line break, a last atom record shorter than the others)
+/// are warnings in the report; options.strict makes every warning an error. Text read from the file (names, chains,
 /// elements) is made valid UTF-8 (valid_utf8).
 /// Throws InputError naming the file, the problem and the fix when the file is missing, a folder,
 /// unreadable, empty, not a structure, a truncated or corrupt .gz, has a non-finite or absurd coordinate

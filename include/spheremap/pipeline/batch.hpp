@@ -27,11 +27,11 @@
 namespace spheremap {
 
 struct BatchOptions {
-  MapJobOptions job;  // job.map.weights is ignored: see weights
+  MapJobOptions job;                                   // job.map.weights is ignored: see weights
   std::vector<Weights> weights = {Weights::kUniform};  // at least one, no repeats
-  int jobs = 1;                // worker threads (at least 1; no more are started than inputs to run)
-  bool force = false;          // redo every input: every run folder is cleared first
-  bool retry_errors = false;   // redo runs with error.json (cleared first)
+  int jobs = 1;               // worker threads (at least 1; no more are started than inputs to run)
+  bool force = false;         // redo every input: every run folder is cleared first
+  bool retry_errors = false;  // redo runs with error.json (cleared first)
   /// Map each input in a child process (fork) supervised by its worker thread, instead of in the worker
   /// thread itself. Concurrent maps in one process are NOT reproducible with Debian 12's CHOLMOD and
   /// serial OpenBLAS, while separate processes are; a crash or an out-of-memory kill then also costs one
@@ -46,23 +46,23 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options);
 
 /// What happened to one input in this session.
 struct BatchInputOutcome {
-  std::size_t index = 0;                    // into the inputs
-  std::vector<RunStatus> statuses;          // per weighting (all of them, including runs done earlier)
-  int exit_code = 0;                        // of the error, when an error happened
-  std::string message;                      // the error's message
-  std::vector<std::string> warnings;        // about the input file (report.json's structure.warnings)
-  double seconds = 0;                       // wall clock of this input in this session
+  std::size_t index = 0;              // into the inputs
+  std::vector<RunStatus> statuses;    // per weighting (all of them, including runs done earlier)
+  int exit_code = 0;                  // of the error, when an error happened
+  std::string message;                // the error's message
+  std::vector<std::string> warnings;  // about the input file (report.json's structure.warnings)
+  double seconds = 0;                 // wall clock of this input in this session
 };
 
 struct BatchProgress {
-  std::size_t inputs = 0;          // all inputs
-  std::size_t already_done = 0;    // complete before this session started (skipped)
-  std::size_t finished = 0;        // finished in this session
+  std::size_t inputs = 0;        // all inputs
+  std::size_t already_done = 0;  // complete before this session started (skipped)
+  std::size_t finished = 0;      // finished in this session
   std::size_t running = 0;
-  std::size_t errors = 0;          // inputs with an error run (this session and before)
-  std::size_t not_certified = 0;   // inputs with a run not certified (this session and before)
-  double elapsed_seconds = 0;      // of this session
-  bool stopping = false;           // a stop was requested: no new input is started
+  std::size_t errors = 0;         // inputs with an error run (this session and before)
+  std::size_t not_certified = 0;  // inputs with a run not certified (this session and before)
+  double elapsed_seconds = 0;     // of this session
+  bool stopping = false;          // a stop was requested: no new input is started
 };
 
 enum class BatchStop {

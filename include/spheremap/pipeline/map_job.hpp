@@ -57,8 +57,8 @@ struct MapJobResult {
   double surface_seconds = 0;
   std::vector<StageTime> surface_timings;  // the parts of surface_seconds (MolecularSurface::timings)
   PreparedMesh prepared;
-  bool simplified = false;          // prepared.mesh is a simplification (simplify_surface) of the surface
-  SimplifyReport simplification;    // when simplified
+  bool simplified = false;        // prepared.mesh is a simplification (simplify_surface) of the surface
+  SimplifyReport simplification;  // when simplified
   double simplify_seconds = 0;
   SphereMap map;
   DistortionMetrics metrics;
@@ -117,11 +117,11 @@ inline constexpr const char* kPicturesFolder = "pictures";
 const std::vector<std::string>& map_output_names();
 
 /// Writes `surface.ply`, `sphere.ply`, their glTF 2.0 twins `surface.glb` and `sphere.glb` (io/gltf.hpp:
-/// COLOR_0 the PLY's colours, each property as attribute `_<NAME>`), for a structure `atoms.csv` and `residues.csv` (map_tables.hpp), and
-/// `report.json` (make_report) into `directory` (created if missing), each atomically, report.json last. Both
-/// PLY files have the same vertices in the same order and the same triangles, with per-vertex `theta`, `phi`
-/// (double), `input_vertex`, for a structure `atomid` (int), every property as float `vertex_<name>`, the
-/// vertex normal of the surface `nx ny nz` (float) and `red green blue` (uchar) of the colour property
+/// COLOR_0 the PLY's colours, each property as attribute `_<NAME>`), for a structure `atoms.csv` and `residues.csv`
+/// (map_tables.hpp), and `report.json` (make_report) into `directory` (created if missing), each atomically,
+/// report.json last. Both PLY files have the same vertices in the same order and the same triangles, with per-vertex
+/// `theta`, `phi` (double), `input_vertex`, for a structure `atomid` (int), every property as float `vertex_<name>`,
+/// the vertex normal of the surface `nx ny nz` (float) and `red green blue` (uchar) of the colour property
 /// (options.colour, colour_property); text provenance (atom, residue, chain names) is in atoms.csv only.
 /// A mesh file's own vertex attributes are kept. Precondition: `result` and `options` are those of one
 /// run_map_job*. Throws InputError if a file cannot be written or options.colour names no property;

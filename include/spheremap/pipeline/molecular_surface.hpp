@@ -20,20 +20,20 @@ namespace spheremap {
 /// One closure of the handle repair (a handle cut or a tunnel filled), for the report.
 struct ClosureReport {
   ClosureKind kind = ClosureKind::kCut;  // to_string: "cut" (a handle cut through) or "fill" (a tunnel spanned)
-  std::int64_t samples = 0;      // grid samples moved to the other side
-  double volume = 0;             // Å³ (samples x grid³): removed by a cut, added by a fill
+  std::int64_t samples = 0;              // grid samples moved to the other side
+  double volume = 0;                     // Å³ (samples x grid³): removed by a cut, added by a fill
   /// Å², what this change did to the area of the contour (every component, almost always the outer
   /// surface), on the field as it was when applied: the changes add up to the surface's area change.
   double area_change = 0;
-  int handles_removed = 0;       // 1, or more for a change that spans several handles at once
-  Vec3 centre{};                 // mean position of the samples
+  int handles_removed = 0;                   // 1, or more for a change that spans several handles at once
+  Vec3 centre{};                             // mean position of the samples
   std::vector<std::string> lining_residues;  // "chain:NAMEnumber[icode]", nearest atoms of the samples, sorted
 };
 
 /// What the handle repair of a molecular surface changed (all zero when nothing was needed): an
 /// OuterGenusRepair in Å, for the report.
 struct HandleRepairReport {
-  int genus_before = 0;           // of the outer surface before repair (also with --keep-topology)
+  int genus_before = 0;  // of the outer surface before repair (also with --keep-topology)
   /// kNone; kPerHandle (each handle cut or each tunnel filled, whichever is smaller); or, when that does
   /// not reach genus 0, the global closure kGlobalFill (every tunnel filled) or kGlobalCut (every handle cut).
   RepairMethod method = RepairMethod::kNone;
@@ -43,9 +43,9 @@ struct HandleRepairReport {
   /// and for the global fallback.
   int rounds = 0;
   std::int64_t samples_changed = 0;
-  double volume_changed = 0;      // Å³ (samples changed x grid³)
+  double volume_changed = 0;               // Å³ (samples changed x grid³)
   double area_before = 0, area_after = 0;  // Å², of the outer surface (the largest component)
-  std::vector<ClosureReport> closures;  // per handle (kPerHandle), or one for the global closure
+  std::vector<ClosureReport> closures;     // per handle (kPerHandle), or one for the global closure
 };
 
 /// What a closed component of a molecular surface is.
@@ -71,11 +71,11 @@ struct SurfaceComponentReport {
 
 /// A molecular surface with its components analysed.
 struct MolecularSurface {
-  Mesh mesh;  // every component, with atom provenance
+  Mesh mesh;                // every component, with atom provenance
   std::vector<Atom> atoms;  // the structure's atoms (what `atomid` indexes); those of radius 0 made no surface
-  std::vector<MeshComponent> components;          // largest area first
-  std::vector<SurfaceComponentReport> reports;    // same order
-  std::vector<StageTime> timings;                 // wall-clock seconds of its stages ("field", "contour", ...)
+  std::vector<MeshComponent> components;        // largest area first
+  std::vector<SurfaceComponentReport> reports;  // same order
+  std::vector<StageTime> timings;               // wall-clock seconds of its stages ("field", "contour", ...)
 };
 
 /// True for the extensions read_structure reads (.pdb .ent .cif .mmcif .pqr, any case, optionally .gz).

@@ -42,7 +42,6 @@ const ColourTable& categorical_table();
 /// The table of a scale kind (one of the four above).
 const ColourTable& colour_table(ScaleKind kind);
 
-
 /// The table entry of `value`, or -1 for a missing value. Continuous scales: t = (value - lo) / (hi - lo),
 /// entry floor(256 t) clamped to [0, 255] (so lo..hi is cut into 256 equal bins; +-infinity saturate);
 /// a range with hi <= lo gives entry 128 for every value. Categorical: the value rounded to the nearest

@@ -27,9 +27,9 @@ struct ResidueLabel {
 std::string residue_id(const ResidueLabel& residue);
 
 struct Globe {
-  std::string name;               // the structure or mesh, for titles (e.g. "1crn")
-  std::vector<Vec3> surface;      // the original surface
-  std::vector<Vec3> sphere;       // the globe: unit vectors superposed on the surface (sphere.ply)
+  std::string name;                 // the structure or mesh, for titles (e.g. "1crn")
+  std::vector<Vec3> surface;        // the original surface
+  std::vector<Vec3> sphere;         // the globe: unit vectors superposed on the surface (sphere.ply)
   std::vector<Triangle> triangles;  // shared by both, counter-clockwise seen from outside
   /// Per vertex: the index into `residues` of the residue of its atom, or -1; empty for a mesh without atoms.
   std::vector<std::int32_t> vertex_residue;
@@ -59,10 +59,9 @@ std::string globe_property_names(const Globe& globe);
 /// The properties pictures show until the property registry fills MapJobResult::properties: octant (of
 /// the globe point, categorical), and from the surface's atom attributes chain_index (categorical, chains
 /// in order of first atom), sequence_position (per chain, 0 at its first polymer residue on the surface to 1
-/// at its last, by residue number and insertion code; no value on ligands, ions and waters), residue_number, b_factor (Å²) and charge (e), each when the
-/// surface carries what it needs. Precondition: sphere.size() == surface.vertex_count(). Never throws (but
-/// std::bad_alloc).
+/// at its last, by residue number and insertion code; no value on ligands, ions and waters), residue_number, b_factor
+/// (Å²) and charge (e), each when the surface carries what it needs. Precondition: sphere.size() ==
+/// surface.vertex_count(). Never throws (but std::bad_alloc).
 std::vector<SurfaceProperty> properties_from_attributes(const Mesh& surface, const std::vector<Vec3>& sphere);
-
 
 }  // namespace spheremap

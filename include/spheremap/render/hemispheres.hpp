@@ -16,7 +16,7 @@ namespace spheremap {
 /// surface's axis of least spread with its axis of most spread across (as PyMOL's `orient` and the viewer
 /// open); the back view is the front one turned 180° about the vertical axis.
 struct HemisphereViews {
-  Vec3 centre{0, 0, 0};                         // of the surface (the globe is centred at the origin)
+  Vec3 centre{0, 0, 0};                                    // of the surface (the globe is centred at the origin)
   std::array<double, 9> front{1, 0, 0, 0, 1, 0, 0, 0, 1};  // rows: right, up, towards the viewer
 };
 

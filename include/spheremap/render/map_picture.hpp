@@ -45,9 +45,9 @@ ValueRange picture_range(const SurfaceProperty& property, const std::optional<Va
 struct MapFigureOptions {
   int width = 2048, height = 1024;  // the whole figure, pixels (SVG/PDF: points)
   ImageFormat format = ImageFormat::png;
-  std::optional<ValueRange> range;      // the colour range (default: picture_range)
-  std::vector<std::int32_t> outline;    // residues (indices into globe.residues) outlined on the map
-  std::string outline_label;            // the selection as given, for the caption (e.g. "A:45-60,B:12")
+  std::optional<ValueRange> range;    // the colour range (default: picture_range)
+  std::vector<std::int32_t> outline;  // residues (indices into globe.residues) outlined on the map
+  std::string outline_label;          // the selection as given, for the caption (e.g. "A:45-60,B:12")
   int threads = 0;
 };
 
@@ -68,10 +68,10 @@ std::string map_figure(const Globe& globe, const SurfaceProperty& property, cons
 
 /// The numeric grid of a map: the projection's bounding rectangle in `columns` x `rows` cells (cells whose
 /// centre is off the map left out), one line per cell: row, column, latitude and longitude of its centre
-/// (degrees, 3 decimals), value (mean of the property at 4 x 4 points of the cell; categorical: the most frequent class,
-/// the smallest of equals; empty if none has a value) and the residues under those points (the nearest
-/// vertex's residue, "A:45,A:46", in chain and number order). Tab-separated, a header line first.
-/// Preconditions: columns, rows > 0. Throws std::invalid_argument otherwise.
+/// (degrees, 3 decimals), value (mean of the property at 4 x 4 points of the cell; categorical: the most frequent
+/// class, the smallest of equals; empty if none has a value) and the residues under those points (the nearest vertex's
+/// residue, "A:45,A:46", in chain and number order). Tab-separated, a header line first. Preconditions: columns, rows >
+/// 0. Throws std::invalid_argument otherwise.
 std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
                          Projection projection, int columns = 360, int rows = 180);
 

@@ -22,7 +22,7 @@ struct BarChart {
 };
 
 struct PlotSize {
-  int width = 960;   // pixels (SVG user units)
+  int width = 960;  // pixels (SVG user units)
   int height = 600;
 };
 
@@ -51,12 +51,12 @@ struct BarChartLayout {
   struct Bar {
     int x0, y0, x1, y1;
   };
-  std::vector<Bar> bars;            // one per category (an empty bar has y0 == y1)
-  std::vector<double> y_ticks;      // values of the horizontal grid lines, from 0 up to the axis maximum
-  std::vector<int> y_tick_rows;     // their rows
+  std::vector<Bar> bars;         // one per category (an empty bar has y0 == y1)
+  std::vector<double> y_ticks;   // values of the horizontal grid lines, from 0 up to the axis maximum
+  std::vector<int> y_tick_rows;  // their rows
   std::vector<std::string> y_tick_labels;
-  double y_max = 1;                 // value at the top of the axes
-  int label_every = 1;              // category labels drawn under bars 0, k, 2k, ...
+  double y_max = 1;     // value at the top of the axes
+  int label_every = 1;  // category labels drawn under bars 0, k, 2k, ...
 };
 
 /// The layout of `chart` on a canvas of `size`. The y axis runs from 0 to a round number (1, 2 or 5

@@ -14,9 +14,9 @@ namespace spheremap {
 
 /// A histogram with its bins as chart categories.
 struct Histogram {
-  std::vector<double> edges;          // bins [edges[i], edges[i+1]); the last one may be +inf (overflow)
-  std::vector<std::int64_t> counts;   // one per bin
-  std::vector<std::string> labels;    // one per bin, as drawn under the bar
+  std::vector<double> edges;         // bins [edges[i], edges[i+1]); the last one may be +inf (overflow)
+  std::vector<std::int64_t> counts;  // one per bin
+  std::vector<std::string> labels;   // one per bin, as drawn under the bar
 };
 
 /// Figure 4a: octant areas (%) of every report in `reports` (8 each), in bins 3% wide centred on

@@ -41,16 +41,16 @@ struct ProtocolSummary {
   std::int64_t plain_folded_total = 0, plain_collapsed_total = 0;
   std::int64_t plain_surfaces_without_folds = 0, plain_surfaces_certified = 0;
   // Distortion of the final maps.
-  double area_mean_of_means_percent = 0;  // Table 1 "Mean"
-  double area_max_of_means_percent = 0;   // Table 1 "(Max)"
-  double area_mean_of_maxima_percent = 0; // mean over surfaces of the per-surface max over triangles
-  double area_max_percent = 0;            // max over all triangles of all surfaces
-  double angle_mean_of_rms_degrees = 0;   // Table 1 "Mean"
-  double angle_max_of_rms_degrees = 0;    // Table 1 "(Max)"
-  double angle_mean_of_means_degrees = 0; // mean over surfaces of the per-surface mean |Δangle|
-  double angle_max_degrees = 0;           // max over all corners of all surfaces
-  double octant_rms_pooled_percent = 0;   // Table 1 last column
-  double octant_rms_mean_percent = 0;     // mean over surfaces of the per-surface octant RMS
+  double area_mean_of_means_percent = 0;   // Table 1 "Mean"
+  double area_max_of_means_percent = 0;    // Table 1 "(Max)"
+  double area_mean_of_maxima_percent = 0;  // mean over surfaces of the per-surface max over triangles
+  double area_max_percent = 0;             // max over all triangles of all surfaces
+  double angle_mean_of_rms_degrees = 0;    // Table 1 "Mean"
+  double angle_max_of_rms_degrees = 0;     // Table 1 "(Max)"
+  double angle_mean_of_means_degrees = 0;  // mean over surfaces of the per-surface mean |Δangle|
+  double angle_max_degrees = 0;            // max over all corners of all surfaces
+  double octant_rms_pooled_percent = 0;    // Table 1 last column
+  double octant_rms_mean_percent = 0;      // mean over surfaces of the per-surface octant RMS
   double octant_min_percent = 0, octant_max_percent = 0;
 };
 
@@ -76,11 +76,11 @@ std::string with_thousands(std::int64_t n);
 
 /// What Table 1's markdown says besides the protocol summaries.
 struct Table1Context {
-  std::string runs_dir;                          // as the user gave it
+  std::string runs_dir;  // as the user gave it
   std::int64_t reports_found = 0;
-  std::int64_t error_runs = 0;                   // error.json files found (failed runs, not in the table)
-  std::vector<std::string> figure_notes;         // one bullet each, e.g. which surface Figure 4b shows
-  std::vector<std::string> warnings;             // e.g. an input repeated under one weighting
+  std::int64_t error_runs = 0;            // error.json files found (failed runs, not in the table)
+  std::vector<std::string> figure_notes;  // one bullet each, e.g. which surface Figure 4b shows
+  std::vector<std::string> warnings;      // e.g. an input repeated under one weighting
 };
 
 /// table1.md: Table 1 with the paper's rows beside ours, the footnotes stating how each column is

@@ -17,14 +17,14 @@ inline constexpr double kDefaultCollapseFloor = 1e-6;
 
 struct Certificate {
   std::int64_t triangle_count = 0;
-  std::int64_t folded = 0;             // det[a,b,c] <= 0 (exact sign); zero counts as folded
-  std::int64_t collapsed = 0;          // positively oriented but normalized area ratio < floor;
-                                       // a triangle of zero surface area has ratio +inf, never collapsed
-  std::int64_t decided_exactly = 0;    // orientation signs the floating-point filter could not decide
-  double total_solid_angle = 0;        // signed sum of the triangles' solid angles
-  double coverage = 0;                 // total_solid_angle / 4π; 1 for a one-to-one map
-  double min_area_ratio = 0;           // smallest normalized area ratio over positive triangles;
-                                       // 0 when there is none, +inf when all have zero surface area
+  std::int64_t folded = 0;           // det[a,b,c] <= 0 (exact sign); zero counts as folded
+  std::int64_t collapsed = 0;        // positively oriented but normalized area ratio < floor;
+                                     // a triangle of zero surface area has ratio +inf, never collapsed
+  std::int64_t decided_exactly = 0;  // orientation signs the floating-point filter could not decide
+  double total_solid_angle = 0;      // signed sum of the triangles' solid angles
+  double coverage = 0;               // total_solid_angle / 4π; 1 for a one-to-one map
+  double min_area_ratio = 0;         // smallest normalized area ratio over positive triangles;
+                                     // 0 when there is none, +inf when all have zero surface area
   double collapse_floor = kDefaultCollapseFloor;
   std::vector<std::int32_t> folded_triangles;     // indices, ascending
   std::vector<std::int32_t> collapsed_triangles;  // indices, ascending
@@ -38,7 +38,8 @@ struct Certificate {
 /// triangle's signed_solid_angle (the terms of total_solid_angle), for callers that need them too.
 /// The triangles are checked on every hardware thread; the result does not depend on how many there are.
 Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sphere,
-                               double collapse_floor = kDefaultCollapseFloor, std::vector<double>* solid_angles = nullptr);
+                               double collapse_floor = kDefaultCollapseFloor,
+                               std::vector<double>* solid_angles = nullptr);
 
 /// Signed solid angle of the spherical triangle abc (unit vectors), Van Oosterom & Strackee 1983.
 /// Never throws.

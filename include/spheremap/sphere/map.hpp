@@ -65,8 +65,8 @@ struct MapOptions {
 };
 
 struct SplitEdge {
-  std::int32_t a, b;       // ring vertices joined by a dividing edge
-  char pole;               // 'N' or 'S': the ring they belong to
+  std::int32_t a, b;  // ring vertices joined by a dividing edge
+  char pole;          // 'N' or 'S': the ring they belong to
 };
 
 /// Which construction made the map (report.json: map.method).
@@ -114,12 +114,12 @@ struct MapPoles {
 /// and takes theta0 and mercator_c from its subdivision's map; the rest keep their defaults.
 struct MapConstruction {
   MapMethod method = MapMethod::kPolesAndRings;
-  int refinement_levels = 0;              // midpoint subdivisions mapped instead of the mesh
-  double theta0 = 0;                      // π / d_s
-  double mercator_c = 0, ring_z = 1;      // C and Z of the Mercator scaling
+  int refinement_levels = 0;          // midpoint subdivisions mapped instead of the mesh
+  double theta0 = 0;                  // π / d_s
+  double mercator_c = 0, ring_z = 1;  // C and Z of the Mercator scaling
   std::int32_t north_ring_size = 0, south_ring_size = 0;
   std::vector<SplitEdge> split_edges;
-  std::vector<std::int32_t> meridian;     // boundary meridian, north ring to south ring
+  std::vector<std::int32_t> meridian;  // boundary meridian, north ring to south ring
   MeridianMethod meridian_method = MeridianMethod::kNone;
   /// The re-weighting round whose z the meridian was found for (0: the plain map's). Rounds keep the
   /// meridian of the best map so far while their z strictly decreases along it (a chord-free path from
@@ -165,7 +165,7 @@ struct MapDiagnostics {
   MapConstruction construction;
   SolveDiagnostics solve;
   RepairDiagnostics repair;
-  FallbackReport fallback;         // ran only when the map ended uncertified after the repair
+  FallbackReport fallback;  // ran only when the map ended uncertified after the repair
   ObjectiveReport objective;
   std::vector<StageTime> timings;  // "poles", "rings" or "solve", "certify-plain", "reweight", ..., "fallback"
 };

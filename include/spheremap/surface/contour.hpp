@@ -27,7 +27,9 @@ inline constexpr double kContourMinimumFraction = 0.1;
 /// a few planes of the grid per thread.
 /// Throws std::invalid_argument if a sample of the outer layer is inside, the grid is smaller than 2³, or
 /// minimum_fraction is outside [0, 0.5].
-Mesh contour_isosurface(const Grid3<double>& field, double level, int threads = 0, double minimum_fraction = kContourMinimumFraction);
-Mesh contour_isosurface(const Grid3<float>& field, double level, int threads = 0, double minimum_fraction = kContourMinimumFraction);
+Mesh contour_isosurface(const Grid3<double>& field, double level, int threads = 0,
+                        double minimum_fraction = kContourMinimumFraction);
+Mesh contour_isosurface(const Grid3<float>& field, double level, int threads = 0,
+                        double minimum_fraction = kContourMinimumFraction);
 
 }  // namespace spheremap

@@ -12,8 +12,8 @@
 namespace spheremap {
 
 struct SurfaceOptions {
-  double probe = 1.4;     // Å, the convention of MSMS, NanoShaper and PyMOL
-  double grid = 0.5;      // Å between samples
+  double probe = 1.4;  // Å, the convention of MSMS, NanoShaper and PyMOL
+  double grid = 0.5;   // Å between samples
   /// Refuse fields whose grid would need more memory than this: one value per sample (8 bytes for
   /// solvent_excluded_field, 4 for solvent_excluded_field_float and solvent_excluded_surface); the field
   /// is built in place, with no other per-sample array. The mesh comes on top (see solvent_excluded_surface).

@@ -38,9 +38,9 @@ struct PrepareOptions {
 struct PrepareReport {
   std::int64_t input_vertices = 0;
   std::int64_t input_faces = 0;
-  std::int64_t polygons_triangulated = 0;  // faces with more than 3 corners
-  std::int64_t vertices_welded = 0;        // input vertices merged into another one
-  std::int64_t unreferenced_vertices = 0;  // dropped because no triangle uses them
+  std::int64_t polygons_triangulated = 0;     // faces with more than 3 corners
+  std::int64_t vertices_welded = 0;           // input vertices merged into another one
+  std::int64_t unreferenced_vertices = 0;     // dropped because no triangle uses them
   std::int64_t degenerate_faces_dropped = 0;  // a corner repeated after welding
   std::int64_t duplicate_faces_dropped = 0;   // same three vertices as an earlier triangle
   std::int64_t components = 0;
