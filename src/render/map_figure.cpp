@@ -81,7 +81,7 @@ std::vector<std::uint32_t> map_pixels(const Globe& globe, const SurfaceProperty&
     for (int x = 0; x < s.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
       if (pixels[i] != 0) continue;
-      for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
         const int nx = x + dx, ny = y + dy;
         if (nx < 0 || ny < 0 || nx >= s.width || ny >= s.height) continue;
         const std::uint32_t c = pixels[static_cast<std::size_t>(ny) * s.width + nx];

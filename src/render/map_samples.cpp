@@ -133,8 +133,10 @@ std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, co
         if (!centre) continue;
         const CellSummary cell = summarize_cell(globe, property, grid, row, column);
         std::string residues;
-        for (const std::int32_t r : cell.residues)
-          residues += (residues.empty() ? "" : ",") + residue_id(globe.residues[r]);
+        for (const std::int32_t r : cell.residues) {
+          if (!residues.empty()) residues += ',';
+          residues += residue_id(globe.residues[r]);
+        }
         lines[row] += fmt::format("{}\t{}\t{:.3f}\t{:.3f}\t{}\t{}\n", row, column, centre->latitude / kDegree,
                                   centre->longitude / kDegree,
                                   std::isnan(cell.value) ? "" : fmt::format("{:.6g}", cell.value), residues);
