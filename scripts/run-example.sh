@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh spheremap_cli  # the library and the command only: no tests, no benchmarks
-./build/spheremap map examples/dumbbell.ply -o out/example
-echo "outputs: out/example/surface.ply out/example/sphere.ply out/example/report.json"
-./build/spheremap map /usr/share/pymol/data/demo/il2.pdb -o out/il2
-echo "outputs: out/il2/surface.ply out/il2/sphere.ply out/il2/report.json (with per-vertex atom provenance)"
+# --force: a second run replaces the first run's outputs (map refuses a folder of an earlier run without it).
+./build/spheremap map examples/dumbbell.ply -o out/example --force
+echo "outputs in out/example/: surface.ply, sphere.ply (+ .glb), report.json, pictures/, index.html (the viewer)"
+./build/spheremap map /usr/share/pymol/data/demo/il2.pdb -o out/il2 --force
+echo "outputs in out/il2/: the same, with per-vertex properties, atoms.csv and residues.csv"
