@@ -22,6 +22,8 @@ cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSPHEREMAP_BUILD_BENCHMARKS=OFF >/dev/null
 export ASAN_OPTIONS="exitcode=86:halt_on_error=1:detect_leaks=1:detect_odr_violation=2:strict_string_checks=1"
 export UBSAN_OPTIONS="exitcode=86:halt_on_error=1:print_stacktrace=1"
+# fontconfig's caches (pictures' text through cairo) live until exit: scripts/lsan-suppressions.txt.
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan-suppressions.txt:print_suppressions=0"
 if (( all )); then
   cmake --build build-asan -j "$(nproc)" --target spheremap_cli spheremap_tests
   cd build-asan
