@@ -9,34 +9,26 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "mesh_attributes.hpp"
 #include "spheremap/attributes.hpp"
 #include "spheremap/properties/shape.hpp"
 
 namespace spheremap {
 namespace {
 
+using detail::find_attribute;
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-const TextAttribute* text_attribute(const Mesh& mesh, const char* name) {
-  const auto found = mesh.text_attributes.find(name);
-  return found == mesh.text_attributes.end() ? nullptr : &found->second;
-}
-
-template <typename T>
-const std::vector<T>* attribute(const std::map<std::string, std::vector<T>>& attributes, const char* name) {
-  const auto found = attributes.find(name);
-  return found == attributes.end() ? nullptr : &found->second;
-}
 
 using ResidueKey = std::tuple<std::string, std::int32_t, std::string>;  // chain, number, insertion code
 
 // The residue of each vertex, from its atom's chain and number; residues sorted by key.
 void add_residues(const Mesh& surface, Globe& globe) {
-  const TextAttribute* chain = text_attribute(surface, attributes::kChain);
-  const auto* number = attribute(surface.integer_attributes, attributes::kResidueNumber);
+  const TextAttribute* chain = find_attribute(surface.text_attributes, attributes::kChain);
+  const auto* number = find_attribute(surface.integer_attributes, attributes::kResidueNumber);
   if (chain == nullptr || number == nullptr) return;
-  const TextAttribute* insertion = text_attribute(surface, attributes::kInsertionCode);
-  const TextAttribute* name = text_attribute(surface, attributes::kResidueName);
+  const TextAttribute* insertion = find_attribute(surface.text_attributes, attributes::kInsertionCode);
+  const TextAttribute* name = find_attribute(surface.text_attributes, attributes::kResidueName);
   std::map<ResidueKey, std::string> names;
   std::vector<ResidueKey> keys;
   keys.reserve(surface.vertex_count());
@@ -67,7 +59,7 @@ SurfaceProperty octant_property(const std::vector<Vec3>& sphere) {
 // Chains numbered in order of their first atom (atomid) on the surface.
 SurfaceProperty chain_property(const Mesh& surface, const TextAttribute& chain) {
   SurfaceProperty p{{"chain_index", "", ScaleKind::categorical, std::nullopt, {}}, "structure", {}};
-  const auto* atom = attribute(surface.integer_attributes, attributes::kAtomId);
+  const auto* atom = find_attribute(surface.integer_attributes, attributes::kAtomId);
   std::vector<std::int32_t> first_atom(chain.dictionary.size(), std::numeric_limits<std::int32_t>::max());
   for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
     auto& first = first_atom[static_cast<std::size_t>(chain.codes[v])];
@@ -172,16 +164,16 @@ std::string globe_property_names(const Globe& globe) {
 
 std::vector<SurfaceProperty> properties_from_attributes(const Mesh& surface, const std::vector<Vec3>& sphere) {
   std::vector<SurfaceProperty> properties{octant_property(sphere)};
-  if (const TextAttribute* chain = text_attribute(surface, attributes::kChain))
+  if (const TextAttribute* chain = find_attribute(surface.text_attributes, attributes::kChain))
     properties.push_back(chain_property(surface, *chain));
   Globe residues;
   add_residues(surface, residues);
   if (!residues.residues.empty()) properties.push_back(sequence_property(residues));
-  if (const auto* number = attribute(surface.integer_attributes, attributes::kResidueNumber))
+  if (const auto* number = find_attribute(surface.integer_attributes, attributes::kResidueNumber))
     properties.push_back(copied_property("residue_number", "", ScaleKind::sequential, *number, "structure"));
-  if (const auto* b = attribute(surface.real_attributes, attributes::kBFactor))
+  if (const auto* b = find_attribute(surface.real_attributes, attributes::kBFactor))
     properties.push_back(copied_property("b_factor", "Å²", ScaleKind::sequential, *b, "structure"));
-  if (const auto* charge = attribute(surface.real_attributes, attributes::kCharge))
+  if (const auto* charge = find_attribute(surface.real_attributes, attributes::kCharge))
     properties.push_back(copied_property("charge", "e", ScaleKind::diverging, *charge, "PQR"));
   return properties;
 }

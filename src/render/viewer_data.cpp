@@ -4,31 +4,23 @@
 #include <map>
 #include <stdexcept>
 
+#include "mesh_attributes.hpp"
 #include "spheremap/attributes.hpp"
 
 namespace spheremap {
 namespace {
 
-const TextAttribute* text(const Mesh& mesh, const char* name) {
-  const auto found = mesh.text_attributes.find(name);
-  return found == mesh.text_attributes.end() ? nullptr : &found->second;
-}
-
-template <typename T>
-const std::vector<T>* values(const std::map<std::string, std::vector<T>>& attributes, const char* name) {
-  const auto found = attributes.find(name);
-  return found == attributes.end() ? nullptr : &found->second;
-}
+using detail::find_attribute;
 
 // One atom per distinct atomid, named from the first vertex that carries it.
 void add_atoms(const Mesh& surface, ViewerData& data) {
-  const std::vector<std::int32_t>* atom_ids = values(surface.integer_attributes, attributes::kAtomId);
+  const std::vector<std::int32_t>* atom_ids = find_attribute(surface.integer_attributes, attributes::kAtomId);
   if (atom_ids == nullptr) return;
-  const TextAttribute* chain = text(surface, attributes::kChain);
-  const TextAttribute* residue = text(surface, attributes::kResidueName);
-  const TextAttribute* insertion = text(surface, attributes::kInsertionCode);
-  const TextAttribute* atom_name = text(surface, attributes::kAtomName);
-  const std::vector<std::int32_t>* number = values(surface.integer_attributes, attributes::kResidueNumber);
+  const TextAttribute* chain = find_attribute(surface.text_attributes, attributes::kChain);
+  const TextAttribute* residue = find_attribute(surface.text_attributes, attributes::kResidueName);
+  const TextAttribute* insertion = find_attribute(surface.text_attributes, attributes::kInsertionCode);
+  const TextAttribute* atom_name = find_attribute(surface.text_attributes, attributes::kAtomName);
+  const std::vector<std::int32_t>* number = find_attribute(surface.integer_attributes, attributes::kResidueNumber);
   const auto text_of = [](const TextAttribute* a, std::size_t v) { return a ? a->at(v) : std::string(); };
   std::map<std::int32_t, std::int32_t> index_of;
   data.vertex_atoms.reserve(surface.vertex_count());
@@ -60,16 +52,16 @@ ViewerProperty value_property(std::string name, std::string unit, ScaleKind scal
 
 void add_properties(const Mesh& surface, const std::vector<Vec3>& sphere, ViewerData& data) {
   data.properties.push_back(octant_property(sphere));
-  if (const TextAttribute* chain = text(surface, attributes::kChain)) {
+  if (const TextAttribute* chain = find_attribute(surface.text_attributes, attributes::kChain)) {
     ViewerProperty p = value_property("chain", "", ScaleKind::categorical, chain->codes);
     p.categories = chain->dictionary;
     data.properties.push_back(std::move(p));
   }
-  if (const auto* number = values(surface.integer_attributes, attributes::kResidueNumber))
+  if (const auto* number = find_attribute(surface.integer_attributes, attributes::kResidueNumber))
     data.properties.push_back(value_property("residue number", "", ScaleKind::sequential, *number));
-  if (const auto* b = values(surface.real_attributes, attributes::kBFactor))
+  if (const auto* b = find_attribute(surface.real_attributes, attributes::kBFactor))
     data.properties.push_back(value_property("B-factor", "Å²", ScaleKind::sequential, *b));
-  if (const auto* charge = values(surface.real_attributes, attributes::kCharge))
+  if (const auto* charge = find_attribute(surface.real_attributes, attributes::kCharge))
     data.properties.push_back(value_property("charge", "e", ScaleKind::diverging, *charge));
 }
 
