@@ -3,7 +3,7 @@
 // that uses no OpenMP of its own may link it.
 //
 // Debian's CHOLMOD opens an OpenMP parallel region for every supernode. The library makes them inactive
-// (keep_openmp_serial in src/sphere/harmonic.cpp), but libgomp still allocates a team of one for each and
+// (SolverSection in src/sphere/solver_section.cpp), but libgomp still allocates a team of one for each and
 // ends it with a barrier whose futex wake is a system call: 1.2 million of them in one default map of an
 // 8.7k-atom protein (5hr7), about a fifth of the map stage's time. CHOLMOD imports only GOMP_parallel,
 // omp_get_num_threads and omp_get_thread_num (its loops have static schedules, split inline), so running

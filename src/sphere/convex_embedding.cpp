@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "solver_section.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/embedding.hpp"
 #include "spheremap/topology/connectivity.hpp"
@@ -47,6 +48,7 @@ std::vector<Point2> tutte_embedding(const VertexRings& rings, const Triangle& ou
   }
   Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
   matrix.setFromTriplets(entries.begin(), entries.end());
+  const detail::SolverSection section;  // the factorization and every solve below
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky(matrix);
   if (cholesky.info() != Eigen::Success)
     throw std::runtime_error("convex_embedding: the Tutte system could not be factorized");

@@ -1,17 +1,16 @@
 #include "harmonic.hpp"
 
 #include <cholmod.h>
-#include <omp.h>
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <Eigen/UmfPackSupport>
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <numeric>
 #include <stdexcept>
 
+#include "solver_section.hpp"
 #include "spheremap/geometry/vec.hpp"
 
 namespace spheremap::detail {
@@ -176,17 +175,6 @@ std::vector<std::int32_t> nested_dissection_order(const Eigen::SparseMatrix<doub
   return order;
 }
 
-// Debian's CHOLMOD opens an OpenMP parallel region (with a fixed thread count that OMP_NUM_THREADS does
-// not lower) for every supernode: a thread wake-up per supernode costs a large share of the
-// factorization's wall time, and a second busy core that a parallel batch needs. No active parallel
-// level makes every such region run on the calling thread. We use no OpenMP ourselves. (libgomp still
-// makes a team of one and a barrier system call per region: the command and the benchmarks link
-// cli/serial_openmp.cpp, which runs regions without them.)
-void keep_openmp_serial() {
-  static std::once_flag once;
-  std::call_once(once, [] { omp_set_max_active_levels(0); });
-}
-
 // The matrix of `problem` over its unknowns, both triangles (for the fill-reducing order and LU).
 Eigen::SparseMatrix<double> problem_matrix(const HarmonicProblem& problem,
                                            const std::vector<std::int32_t>& unknown_index, std::int32_t unknowns) {
@@ -231,7 +219,6 @@ struct Cholmod {
 
 bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32_t>& unknown_index,
                     std::int32_t unknowns, std::vector<double>& x) {
-  keep_openmp_serial();
   const auto& rings = *problem.rings;
   const auto n = rings.vertex_count();
   std::vector<Vec3> unknown_positions(static_cast<std::size_t>(unknowns));
@@ -266,8 +253,11 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
     for (const auto& [row, v] : column) row_index[next] = row, value[next] = v, ++next;
   }
   column_start[unknowns] = static_cast<int>(next);
-  cholmod.factor = cholmod_analyze(lower, &cholmod.common);
-  if (cholmod.factor) cholmod_factorize(lower, cholmod.factor, &cholmod.common);
+  {
+    const SolverSection section;
+    cholmod.factor = cholmod_analyze(lower, &cholmod.common);
+    if (cholmod.factor) cholmod_factorize(lower, cholmod.factor, &cholmod.common);
+  }
   cholmod_free_sparse(&lower, &cholmod.common);
   // An indefinite matrix (cotangent weights) is expected: the caller falls back to LU.
   if (!cholmod.factor || cholmod.common.status != CHOLMOD_OK ||
@@ -287,7 +277,11 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
     }
     b[row_of[unknown_index[v]]] = sum;
   }
-  cholmod_dense* solution = cholmod_solve(CHOLMOD_A, cholmod.factor, rhs, &cholmod.common);
+  cholmod_dense* solution = nullptr;
+  {
+    const SolverSection section;
+    solution = cholmod_solve(CHOLMOD_A, cholmod.factor, rhs, &cholmod.common);
+  }
   cholmod_free_dense(&rhs, &cholmod.common);
   if (!solution) throw std::runtime_error("the Cholesky solve failed");
   const auto* values = static_cast<const double*>(solution->x);
@@ -437,7 +431,6 @@ ReusableCholesky::ReusableCholesky(const VertexRings& rings, const EliminationOr
 
 void ReusableCholesky::analyse(const VertexRings& rings, std::vector<std::int32_t> vertex_of_row,
                                const std::vector<std::int32_t>& last) {
-  keep_openmp_serial();
   auto& s = *state_;
   s.rings = &rings;
   s.last = last;
@@ -487,7 +480,10 @@ void ReusableCholesky::analyse(const VertexRings& rings, std::vector<std::int32_
   // factorizations are much slower), AMD's by AMD itself (it ends with a postorder of its assembly tree);
   // the geometric one is left as it is (CHOLMOD's postorder does not help it on every mesh).
   s.cholmod.common.postorder = false;
-  s.cholmod.factor = cholmod_analyze(s.lower, &s.cholmod.common);
+  {
+    const SolverSection section;
+    s.cholmod.factor = cholmod_analyze(s.lower, &s.cholmod.common);
+  }
   if (!s.cholmod.factor || s.cholmod.common.status != CHOLMOD_OK)
     throw std::runtime_error("CHOLMOD's symbolic analysis failed");
 }
@@ -526,7 +522,10 @@ bool ReusableCholesky::factorize(const HarmonicProblem& problem) {
       value[e] = problem.fixed[r] || problem.fixed[rings.neighbors[source]] ? 0.0 : -w[source];
     }
   }
-  cholmod_factorize(s.lower, s.cholmod.factor, &s.cholmod.common);
+  {
+    const SolverSection section;
+    cholmod_factorize(s.lower, s.cholmod.factor, &s.cholmod.common);
+  }
   s.factorized = s.cholmod.common.status == CHOLMOD_OK && s.cholmod.factor->minor >= static_cast<std::size_t>(unknowns);
   return s.factorized;
 }
@@ -557,6 +556,7 @@ void ReusableCholesky::solve(const HarmonicProblem& problem, std::vector<double>
     b[k] = sum;
   }
   cholmod_dense* solution = nullptr;
+  const SolverSection section;  // the solves below
   if (!last_fixed) {
     solution = cholmod_solve(CHOLMOD_A, s.cholmod.factor, rhs, &s.cholmod.common);
   } else {
@@ -613,6 +613,7 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
     }
   }
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  const SolverSection section;  // the factorization and the solve
   lu.compute(matrix);
   if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU factorization failed (singular system)");
   const Eigen::VectorXd solution = lu.solve(rhs);

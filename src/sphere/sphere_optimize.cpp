@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver_section.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/optimize.hpp"
@@ -230,6 +231,7 @@ class Optimizer {
     double trace = 0;
     for (Eigen::Index i = 0; i < hessian.rows(); ++i) trace += hessian.coeff(i, i);
     double mu = 1e-9 * std::max(trace / static_cast<double>(hessian.rows()), 1e-300);
+    const detail::SolverSection section;  // the analysis, factorizations and solves below
     if (!analysed_) {
       cholesky_.analyzePattern(hessian);
       analysed_ = true;
