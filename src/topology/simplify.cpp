@@ -533,12 +533,14 @@ class Surface {
       auto& w = zone_work[static_cast<std::size_t>(zone)];
       for (const auto& candidates : candidate_groups) {
         for (const auto& c : candidates) {
-          if (zone_[c.a] != zone) continue;
-          if (!alive_vertex(c.a) || !alive_vertex(c.b)) continue;
+          if (zone_[c.a] != zone || !alive_vertex(c.a)) continue;
+          // An end in the other zone is that zone's thread's to change: it is not even read here (the serial
+          // pass skips the candidate if it died meanwhile).
           if (zone_[c.b] != zone) {
             w.deferred.push_back(c);
             continue;
           }
+          if (!alive_vertex(c.b)) continue;
           const bool short_edge = squared_distance(p_[c.a], p_[c.b]) < low_squared;
           if (try_collapse(c.a, c.b, !short_edge, w, zone) == Outcome::kDeferred) w.deferred.push_back(c);
         }
