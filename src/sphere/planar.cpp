@@ -15,13 +15,14 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Fill-reducing orders (harmonic.hpp). The geometric nested dissection is nearly free and the best on
-// smooth, convex-ish shapes (a subdivided cube), but a plane cuts a molecular surface along long curves.
-// A good nested dissection of a surface mesh needs O(n^1.5) flops; where the geometric order's factor
-// needs more than kTryAmd n^1.5, AMD's (about as cheap to compute) has needed fewer (BENCHMARKS.md), so
-// on a mesh of kTryAmdVertices or more AMD's order is analysed too and the one with fewer flops serves
-// every factorization of the map. Below that size a factorization takes milliseconds in any order.
-constexpr double kTryAmd = 38;
+// Fill-reducing orders (harmonic.hpp). The geometric nested dissection is cheap and the best on smooth,
+// convex-ish shapes (a subdivided cube, perturbed or not), but a plane cuts a molecular surface, or a
+// body with limbs (armadillo), along long curves, where AMD's order needs 2-10x fewer flops. The flops of
+// the geometric order per n^1.5 do not tell the two kinds apart (armadillo's 29 and a cube's 34), so on
+// a mesh of kTryAmdVertices or more AMD's order is always computed (about as cheap as the geometric one,
+// and it counts its own flops), analysed only if it needs fewer, and the one with fewer flops serves
+// every factorization of the map. Fewer flops has meant less time on every mesh measured
+// (BENCHMARKS.md). Below that size a factorization takes milliseconds in any order.
 constexpr std::size_t kTryAmdVertices = 5000;
 
 // Side of neighbour `i` of meridian vertex `b` whose meridian neighbours are `up` (towards N) and `down`:
@@ -205,11 +206,12 @@ std::unique_ptr<ReusableCholesky> make_factor(const WorkingMesh& work, const Ord
 
 std::unique_ptr<ReusableCholesky> plain_map_factor(const WorkingMesh& work, OrderChoice& order) {
   auto factor = make_factor(work, order);
-  const double vertices = static_cast<double>(work.positions.size());
-  if (factor->flops() > kTryAmd * vertices * std::sqrt(vertices) && work.positions.size() >= kTryAmdVertices) {
+  if (work.positions.size() >= kTryAmdVertices) {
     auto amd = amd_elimination_order(work.rings, work.positions, order.always_fixed);
-    auto amd_factor = std::make_unique<ReusableCholesky>(work.rings, amd);
-    if (amd_factor->flops() < factor->flops()) order.chosen = std::move(amd), factor = std::move(amd_factor);
+    if (amd.method == FillReducingOrder::kAmd && amd.flops < factor->flops()) {
+      auto amd_factor = std::make_unique<ReusableCholesky>(work.rings, amd);
+      if (amd_factor->flops() < factor->flops()) order.chosen = std::move(amd), factor = std::move(amd_factor);
+    }
   }
   return factor;
 }
