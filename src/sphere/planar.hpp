@@ -50,7 +50,7 @@ PlanarCoordinates solve_planar(const WorkingMesh& work, std::int32_t north, std:
                                int round = 0);
 
 /// The fill-reducing order for the Cholesky factorizations of one map: AMD's when it needs fewer flops,
-/// else the geometric one (computed afresh for each analysis: it is nearly free).
+/// else the geometric one (computed afresh for each analysis).
 struct OrderChoice {
   std::vector<char> always_fixed;          // poles and rings: fixed in every system of the map
   std::optional<EliminationOrder> chosen;  // when not the geometric order
@@ -62,7 +62,7 @@ std::unique_ptr<ReusableCholesky> make_factor(const WorkingMesh& work, const Ord
                                               const std::vector<std::int32_t>& last = {});
 
 /// The factorization of the plain map's systems: in the geometric order, or in AMD's where that needs
-/// fewer flops on a mesh large enough to matter (then order.chosen is set, for every later round).
+/// fewer flops on a mesh of 5,000 vertices or more (then order.chosen is set, for every later round).
 /// Preconditions: order.always_fixed set; symmetric weights. Throws as make_factor does.
 std::unique_ptr<ReusableCholesky> plain_map_factor(const WorkingMesh& work, OrderChoice& order);
 
