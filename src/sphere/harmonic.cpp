@@ -114,10 +114,11 @@ SolveStats solve_gauss_seidel(const HarmonicProblem& problem, std::vector<double
 // over both halves, and the separator becomes a jagged band of one and a half rows or more, which costs
 // the factorization several times the flops (3.8x on a subdivided cube perturbed by 5% of an edge). A wide
 // gap passes between rows, where a plane cuts the fewest edges.
-// Meshes below kGapSplitVertices are split exactly at the median (ties by index), as before the gap
-// split: their factorizations take milliseconds in any order, and a new order changes the last bits of
-// their maps, which changed one of them by more than rounding (libigl_bumpy.off, 1,250 vertices: the
-// plain map's smallest area ratio 0.0401 -> 0.0420, octant RMS 0.50% -> 0.88%).
+// Systems of fewer than kGapSplitVertices unknowns (meshes of about as many vertices) are split exactly
+// at the median (ties by index), as before the gap split: their factorizations take milliseconds in any
+// order, and a new order changes the last bits of their maps, which changed one of them by more than
+// rounding (libigl_bumpy.off, 1,250 vertices: the plain map's smallest area ratio 0.0401 -> 0.0420,
+// octant RMS 0.50% -> 0.88%).
 std::vector<std::int32_t>::iterator widest_gap_split(std::vector<std::int32_t>& vertices,
                                                      const std::vector<Vec3>& positions, int axis, bool in_gap) {
   auto less = [&](std::int32_t x, std::int32_t y) {
