@@ -1,12 +1,15 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
+#include "../util/parallel.hpp"
 #include "solver_section.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -55,30 +58,62 @@ void tangent_basis(const Vec3& p, Vec3& e1, Vec3& e2) {
   e2 = cross(p, e1);
 }
 
+// Triangles per chunk of the parallel loops: the chunks are fixed whatever the thread count, and the
+// results are combined chunk by chunk in order, so sums are the same on any number of threads.
+constexpr std::int64_t kChunk = 2048;
+
+// A triangle's share of the Newton system in its corners' tangent coordinates: the gradient (6) and the
+// lower triangle of the projected Hessian (21, row by row: (0,0), (1,0), (1,1), (2,0), ...).
+struct LocalTerms {
+  double gradient[6];
+  double hessian[21];
+};
+
+constexpr int lower_index(int row, int column) { return row * (row + 1) / 2 + column; }
+
 class Optimizer {
  public:
   Optimizer(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles, std::vector<Vec3>& sphere,
             const std::vector<char>& fixed, const SphereOptimizeOptions& options)
-      : triangles_(triangles), sphere_(sphere), options_(options), dof_(sphere.size(), -1) {
+      : triangles_(triangles),
+        sphere_(sphere),
+        options_(options),
+        dof_(sphere.size(), -1),
+        threads_(detail::surface_threads(options.threads)) {
     for (std::size_t v = 0; v < sphere.size(); ++v)
       if (!fixed[v]) dof_[v] = 2 * free_count_++;
+    cholesky_.cholmod().print = 0;  // a matrix that is not positive definite is an answer here, not an error
     build_rest(rest);
   }
 
   double energy(const std::vector<Vec3>& points) const {
+    const auto count = static_cast<std::int64_t>(triangles_.size());
+    std::vector<double> partial(static_cast<std::size_t>((count + kChunk - 1) / kChunk), 0.0);
+    detail::parallel_ranges(count, kChunk, threads_, [&](std::int64_t first, std::int64_t last) {
+      double sum = 0;
+      for (auto t = first; t < last && std::isfinite(sum); ++t) {
+        const auto& tri = triangles_[static_cast<std::size_t>(t)];
+        sum += detail::triangle_energy(options_.energy, rest_[static_cast<std::size_t>(t)], points[tri[0]],
+                                       points[tri[1]], points[tri[2]]);
+      }
+      partial[static_cast<std::size_t>(first / kChunk)] = sum;
+    });
     double total = 0;
-    for (std::size_t t = 0; t < triangles_.size(); ++t) {
-      const auto& tri = triangles_[t];
-      total += detail::triangle_energy(options_.energy, rest_[t], points[tri[0]], points[tri[1]], points[tri[2]]);
-      if (!std::isfinite(total)) return total;
-    }
+    for (const double sum : partial) total += sum;
     return total;
   }
 
   bool valid(const std::vector<Vec3>& points) const {
-    for (const auto& tri : triangles_)
-      if (orientation_sign(points[tri[0]], points[tri[1]], points[tri[2]]) <= 0) return false;
-    return true;
+    std::atomic<bool> ok{true};
+    detail::parallel_ranges(static_cast<std::int64_t>(triangles_.size()), kChunk, threads_,
+                            [&](std::int64_t first, std::int64_t last) {
+                              for (auto t = first; t < last && ok.load(std::memory_order_relaxed); ++t) {
+                                const auto& tri = triangles_[static_cast<std::size_t>(t)];
+                                if (orientation_sign(points[tri[0]], points[tri[1]], points[tri[2]]) <= 0)
+                                  ok.store(false, std::memory_order_relaxed);
+                              }
+                            });
+    return ok.load();
   }
 
   SphereOptimizeReport run() {
@@ -90,15 +125,25 @@ class Optimizer {
       report.stop_reason = OptimizeStop::kConverged;
       return report;
     }
+    build_pattern();
+    std::vector<Vec3> e1(sphere_.size()), e2(sphere_.size()), trial(sphere_);
+    // Near the minimum the per-triangle projection throws away curvature the sum has, and the steps
+    // converge only linearly: after a full, uncut step the next one tries the Hessian as it is, and
+    // keeps it if CHOLMOD factorizes it (positive definite) and its step descends; else the projected one.
+    bool exact = false;
     for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
-      std::vector<Vec3> e1(sphere_.size()), e2(sphere_.size());
       for (std::size_t v = 0; v < sphere_.size(); ++v)
         if (dof_[v] >= 0) tangent_basis(sphere_[v], e1[v], e2[v]);
       Eigen::VectorXd gradient;
-      SparseMatrix hessian;
-      assemble(e1, e2, gradient, hessian);
+      assemble(e1, e2, gradient, exact);
       Eigen::VectorXd step;
-      if (!solve(hessian, gradient, step)) {
+      bool solved = solve(gradient, step, exact ? 1 : 12);
+      if (exact && (!solved || !(gradient.dot(step) < 0))) {
+        exact = false;
+        assemble(e1, e2, gradient, exact);
+        solved = solve(gradient, step, 12);
+      }
+      if (!solved) {
         report.stop_reason = OptimizeStop::kFactorization;
         break;
       }
@@ -112,15 +157,19 @@ class Optimizer {
       for (Eigen::Index i = 0; i + 1 < step.size(); i += 2)
         largest = std::max(largest, std::hypot(step[i], step[i + 1]));
       double alpha = largest > kMaxVertexStep ? kMaxVertexStep / largest : 1.0;
+      const double first_alpha = alpha;
       bool accepted = false;
-      std::vector<Vec3> trial(sphere_);
       double trial_energy = current;
       for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= kBacktrack) {
-        for (std::size_t v = 0; v < sphere_.size(); ++v) {
-          if (dof_[v] < 0) continue;
-          const double u = alpha * step[dof_[v]], w = alpha * step[dof_[v] + 1];
-          trial[v] = normalized(sphere_[v] + u * e1[v] + w * e2[v]);
-        }
+        detail::parallel_ranges(static_cast<std::int64_t>(sphere_.size()), 4 * kChunk, threads_,
+                                [&](std::int64_t first, std::int64_t last) {
+                                  for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(last);
+                                       ++v) {
+                                    if (dof_[v] < 0) continue;
+                                    const double u = alpha * step[dof_[v]], w = alpha * step[dof_[v] + 1];
+                                    trial[v] = normalized(sphere_[v] + u * e1[v] + w * e2[v]);
+                                  }
+                                });
         trial_energy = energy(trial);
         accepted = trial_energy <= current + kArmijo * alpha * slope && valid(trial);
       }
@@ -129,6 +178,8 @@ class Optimizer {
         break;
       }
       sphere_.swap(trial);
+      // A full Newton step taken uncut: the next step tries the Hessian as it is (see exact above).
+      exact = alpha / kBacktrack == 1.0 && first_alpha == 1.0;
       ++report.iterations;
       const double drop = current - trial_energy;
       current = trial_energy;
@@ -172,74 +223,135 @@ class Optimizer {
     }
   }
 
-  // Gradient and projected (positive semi-definite per triangle) Hessian in the tangent coordinates of
-  // the free vertices: u_v along e1[v], w_v along e2[v], p_v(u, w) = (p_v + u e1 + w e2)/|…|.
-  void assemble(const std::vector<Vec3>& e1, const std::vector<Vec3>& e2, Eigen::VectorXd& gradient,
-                SparseMatrix& hessian) const {
+  // The Hessian's sparsity pattern (lower triangle of the free vertices' 2×2 blocks, diagonal always
+  // present for the regularization), fixed for every iteration, and where each triangle's local entries
+  // go in its value array: the assembly then adds into place, and CHOLMOD's analysis holds for all steps.
+  void build_pattern() {
     const Eigen::Index size = 2 * free_count_;
-    gradient = Eigen::VectorXd::Zero(size);
     std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(triangles_.size() * 36 + static_cast<std::size_t>(size));
+    entries.reserve(triangles_.size() * 21 + static_cast<std::size_t>(size));
+    for (const auto& tri : triangles_)
+      for_each_local_entry(tri,
+                           [&](int, Eigen::Index row, Eigen::Index column) { entries.emplace_back(row, column, 0.0); });
+    for (Eigen::Index i = 0; i < size; ++i) entries.emplace_back(i, i, 0.0);
+    hessian_.resize(size, size);
+    hessian_.setFromTriplets(entries.begin(), entries.end());
+    hessian_.makeCompressed();
+    auto slot_of = [&](Eigen::Index row, Eigen::Index column) {
+      const auto* begin = hessian_.innerIndexPtr() + hessian_.outerIndexPtr()[column];
+      const auto* end = hessian_.innerIndexPtr() + hessian_.outerIndexPtr()[column + 1];
+      return static_cast<std::int64_t>(std::lower_bound(begin, end, static_cast<int>(row)) - hessian_.innerIndexPtr());
+    };
+    slots_.assign(triangles_.size() * 21, -1);
+    for (std::size_t t = 0; t < triangles_.size(); ++t)
+      for_each_local_entry(triangles_[t], [&](int local, Eigen::Index row, Eigen::Index column) {
+        slots_[21 * t + static_cast<std::size_t>(local)] = slot_of(row, column);
+      });
+    diagonal_slots_.resize(static_cast<std::size_t>(size));
+    for (Eigen::Index i = 0; i < size; ++i) diagonal_slots_[static_cast<std::size_t>(i)] = slot_of(i, i);
+    locals_.resize(triangles_.size());
+  }
+
+  // Calls f(local, row, column) for each entry of the triangle's local lower triangle (local index as in
+  // LocalTerms::hessian) whose two corners are free, with its place (row >= column) in the global matrix.
+  template <typename F>
+  void for_each_local_entry(const Triangle& tri, F&& f) const {
+    for (int p = 0; p < 6; ++p)
+      for (int q = 0; q <= p; ++q) {
+        const auto a = dof_[tri[p / 2]], b = dof_[tri[q / 2]];
+        if (a < 0 || b < 0) continue;
+        const Eigen::Index row = a + p % 2, column = b + q % 2;
+        f(lower_index(p, q), std::max(row, column), std::min(row, column));
+      }
+  }
+
+  // One triangle's gradient and projected Hessian in the tangent coordinates of its free corners:
+  // u_v along e1[v], w_v along e2[v], p_v(u, w) = (p_v + u e1 + w e2)/|…| (a fixed corner's are 0).
+  void local_terms(std::size_t t, const std::vector<Vec3>& e1, const std::vector<Vec3>& e2, bool exact,
+                   LocalTerms& out) const {
+    const auto& tri = triangles_[t];
     detail::Vector9 g;
     detail::Matrix9 h;
+    detail::triangle_energy(options_.energy, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g, h);
+    Eigen::Matrix<double, 3, 2> basis[3];
+    for (int k = 0; k < 3; ++k) {
+      const auto v = tri[k];
+      if (dof_[v] < 0) {
+        basis[k].setZero();
+        continue;
+      }
+      for (int i = 0; i < 3; ++i) basis[k](i, 0) = e1[v][i], basis[k](i, 1) = e2[v][i];
+    }
+    Vector6 local_gradient;
+    Matrix6 local;
+    for (int k = 0; k < 3; ++k) {
+      local_gradient.segment<2>(2 * k) = basis[k].transpose() * g.segment<3>(3 * k);
+      for (int l = 0; l <= k; ++l) {
+        local.block<2, 2>(2 * k, 2 * l) = basis[k].transpose() * h.block<3, 3>(3 * k, 3 * l) * basis[l];
+        if (l < k) local.block<2, 2>(2 * l, 2 * k) = local.block<2, 2>(2 * k, 2 * l).transpose();
+      }
+    }
+    // The retraction's curvature: d²/dt² of E(p + t e - ½t²p) adds -(∇E·p) to each tangent direction.
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = sphere_[tri[k]];
+      const double radial = g[3 * k] * p[0] + g[3 * k + 1] * p[1] + g[3 * k + 2] * p[2];
+      if (dof_[tri[k]] >= 0) local(2 * k, 2 * k) -= radial, local(2 * k + 1, 2 * k + 1) -= radial;
+    }
+    // Projected Newton: the local Hessian with its negative eigenvalues set to 0 (only when it is not
+    // positive definite already, which a Cholesky factorization tells cheaply).
+    if (!exact && Eigen::LLT<Matrix6>(local).info() != Eigen::Success) {
+      Eigen::SelfAdjointEigenSolver<Matrix6> eigen(local);
+      const Vector6 clamped = eigen.eigenvalues().cwiseMax(0.0);
+      local = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
+    }
+    for (int p = 0; p < 6; ++p) {
+      out.gradient[p] = local_gradient[p];
+      for (int q = 0; q <= p; ++q) out.hessian[lower_index(p, q)] = local(p, q);
+    }
+  }
+
+  // Gradient and projected Hessian (into hessian_'s fixed pattern): the triangles' local terms on every
+  // thread, then added in triangle order on one, so the sums are the same on any number of threads.
+  void assemble(const std::vector<Vec3>& e1, const std::vector<Vec3>& e2, Eigen::VectorXd& gradient, bool exact) {
+    detail::parallel_ranges(static_cast<std::int64_t>(triangles_.size()), kChunk, threads_,
+                            [&](std::int64_t first, std::int64_t last) {
+                              for (auto t = static_cast<std::size_t>(first); t < static_cast<std::size_t>(last); ++t)
+                                local_terms(t, e1, e2, exact, locals_[t]);
+                            });
+    gradient = Eigen::VectorXd::Zero(2 * free_count_);
+    double* values = hessian_.valuePtr();
+    std::fill(values, values + hessian_.nonZeros(), 0.0);
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
       const auto& tri = triangles_[t];
-      detail::triangle_energy(options_.energy, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g, h);
-      Eigen::Matrix<double, 9, 6> basis = Eigen::Matrix<double, 9, 6>::Zero();
-      for (int k = 0; k < 3; ++k) {
-        const auto v = tri[k];
-        if (dof_[v] < 0) continue;
-        for (int i = 0; i < 3; ++i) basis(3 * k + i, 2 * k) = e1[v][i], basis(3 * k + i, 2 * k + 1) = e2[v][i];
-      }
-      const Vector6 local_gradient = basis.transpose() * g;
-      Matrix6 local = basis.transpose() * h * basis;
-      // The retraction's curvature: d²/dt² of E(p + t e - ½t²p) adds -(∇E·p) to each tangent direction.
-      for (int k = 0; k < 3; ++k) {
-        const auto& p = sphere_[tri[k]];
-        const double radial = g[3 * k] * p[0] + g[3 * k + 1] * p[1] + g[3 * k + 2] * p[2];
-        if (dof_[tri[k]] >= 0) local(2 * k, 2 * k) -= radial, local(2 * k + 1, 2 * k + 1) -= radial;
-      }
-      // Projected Newton: the local Hessian with its negative eigenvalues set to 0 (only when it is not
-      // positive definite already, which a Cholesky factorization tells cheaply).
-      if (Eigen::LLT<Matrix6>(local).info() != Eigen::Success) {
-        Eigen::SelfAdjointEigenSolver<Matrix6> eigen(local);
-        const Vector6 clamped = eigen.eigenvalues().cwiseMax(0.0);
-        local = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
-      }
+      const auto& local = locals_[t];
       for (int k = 0; k < 3; ++k) {
         const auto row = dof_[tri[k]];
         if (row < 0) continue;
-        gradient[row] += local_gradient[2 * k];
-        gradient[row + 1] += local_gradient[2 * k + 1];
-        for (int l = 0; l < 3; ++l) {
-          const auto column = dof_[tri[l]];
-          if (column < 0) continue;
-          for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2; ++j)
-              if (row + i >= column + j) entries.emplace_back(row + i, column + j, local(2 * k + i, 2 * l + j));
-        }
+        gradient[row] += local.gradient[2 * k];
+        gradient[row + 1] += local.gradient[2 * k + 1];
       }
+      const std::int64_t* slot = &slots_[21 * t];
+      for (int i = 0; i < 21; ++i)
+        if (slot[i] >= 0) values[slot[i]] += local.hessian[i];
     }
-    for (Eigen::Index i = 0; i < size; ++i) entries.emplace_back(i, i, 0.0);  // the regularization's slots
-    hessian.resize(size, size);
-    hessian.setFromTriplets(entries.begin(), entries.end());
   }
 
   // Newton's step: H d = -g with H + μI, μ raised until the factorization succeeds (the projected
   // Hessian is only semi-definite: rotations about the fixed poles' axis cost nothing).
-  bool solve(SparseMatrix& hessian, const Eigen::VectorXd& gradient, Eigen::VectorXd& step) {
+  bool solve(const Eigen::VectorXd& gradient, Eigen::VectorXd& step, int attempts) {
+    double* values = hessian_.valuePtr();
+    std::vector<double> diagonal(diagonal_slots_.size());
     double trace = 0;
-    for (Eigen::Index i = 0; i < hessian.rows(); ++i) trace += hessian.coeff(i, i);
-    double mu = 1e-9 * std::max(trace / static_cast<double>(hessian.rows()), 1e-300);
+    for (std::size_t i = 0; i < diagonal_slots_.size(); ++i) trace += (diagonal[i] = values[diagonal_slots_[i]]);
+    double mu = 1e-9 * std::max(trace / static_cast<double>(hessian_.rows()), 1e-300);
     const detail::SolverSection section;  // the analysis, factorizations and solves below
     if (!analysed_) {
-      cholesky_.analyzePattern(hessian);
+      cholesky_.analyzePattern(hessian_);
       analysed_ = true;
     }
-    for (int attempt = 0; attempt < 12; ++attempt, mu *= 100) {
-      SparseMatrix shifted = hessian;
-      for (Eigen::Index i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += mu;
-      cholesky_.factorize(shifted);
+    for (int attempt = 0; attempt < attempts; ++attempt, mu *= 100) {
+      for (std::size_t i = 0; i < diagonal_slots_.size(); ++i) values[diagonal_slots_[i]] = diagonal[i] + mu;
+      cholesky_.factorize(hessian_);
       if (cholesky_.info() != Eigen::Success) continue;
       step = cholesky_.solve(-gradient);
       if (cholesky_.info() == Eigen::Success && step.allFinite()) return true;
@@ -252,8 +364,13 @@ class Optimizer {
   const SphereOptimizeOptions& options_;
   std::vector<Eigen::Index> dof_;  // first tangent coordinate of each free vertex, -1 if fixed
   Eigen::Index free_count_ = 0;
+  int threads_;
   std::vector<detail::RestTriangle> rest_;
   double total_area_ = 0;
+  SparseMatrix hessian_;             // fixed pattern, values refilled every iteration
+  std::vector<std::int64_t> slots_;  // 21 per triangle: where its local entries go in hessian_ (-1: none)
+  std::vector<std::int64_t> diagonal_slots_;
+  std::vector<LocalTerms> locals_;
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky_;
   bool analysed_ = false;
 };

@@ -1,5 +1,6 @@
 #include "triangle_energy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -39,18 +40,27 @@ RestTriangle rest_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double a
 double equilateral_half_det(double solid_angle) {
   // Corners at angular distance ρ from the centre, 120° apart: det = (3√3/2) sin²ρ cos ρ and
   // 1 + a·b + b·c + c·a = 4 - (9/2) sin²ρ; tan(Ω/2) = det / that (van Oosterom & Strackee) grows
-  // with ρ from 0 to a great circle (Ω = 2π at ρ = π/2), so bisection on ρ finds it.
+  // with ρ from 0 to a great circle (Ω = 2π at ρ = π/2). Newton's method on ρ from the small-triangle
+  // estimate Ω ≈ (3√3/4)ρ², kept inside a bracket that bisection shrinks when a step would leave it:
+  // a few steps where bisection took a hundred (this runs once per triangle).
   const double root27 = 3 * std::sqrt(3.0);
-  auto omega = [&](double rho) {
-    const double s2 = std::sin(rho) * std::sin(rho);
-    return 2 * std::atan2(0.5 * root27 * s2 * std::cos(rho), 4 - 4.5 * s2);
-  };
   double low = 0, high = 0.5 * std::numbers::pi;
+  double rho = std::min(std::sqrt(4 * solid_angle / root27), 0.5 * high);
+  if (!(rho > 0)) rho = 0.5 * high;
   for (int iteration = 0; iteration < 100; ++iteration) {
-    const double middle = 0.5 * (low + high);
-    (omega(middle) < solid_angle ? low : high) = middle;
+    const double s = std::sin(rho), c = std::cos(rho), s2 = s * s;
+    const double u = 0.5 * root27 * s2 * c, v = 4 - 4.5 * s2;
+    const double f = 2 * std::atan2(u, v) - solid_angle;
+    (f < 0 ? low : high) = rho;
+    const double du = 0.5 * root27 * s * (2 * c * c - s2), dv = -9 * s * c;
+    const double slope = 2 * (du * v - u * dv) / (u * u + v * v);
+    const double next = rho - f / slope;
+    if (f == 0 || std::abs(next - rho) <= 1e-15 * rho) {
+      rho = next;
+      break;
+    }
+    rho = next > low && next < high ? next : 0.5 * (low + high);
   }
-  const double rho = 0.5 * (low + high);
   return 0.25 * root27 * std::sin(rho) * std::sin(rho) * std::cos(rho);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 
@@ -92,6 +93,56 @@ TEST(OptimizeOnSphere, StaysValidAndEqualizesAreas) {
   EXPECT_LT(before.min_area_ratio, 0.35);
   EXPECT_GT(after.min_area_ratio, 0.9);  // the rest is the round sphere itself: equal areas are reachable
   for (const auto& p : points) EXPECT_NEAR(norm(p), 1, 1e-14);
+}
+
+TEST(OptimizeOnSphere, SameResultOnAnyNumberOfThreads) {
+  // Large enough for several chunks of the parallel loops (2,048 triangles each).
+  const Mesh ico = make_icosphere(5);
+  std::vector<Vec3> reference;
+  for (const int threads : {1, 2, 3}) {
+    auto points = squashed(ico, 0.5);
+    std::vector<char> fixed(points.size(), 0);
+    fixed[0] = 1;
+    SphereOptimizeOptions options;
+    options.energy = SphereEnergy::kLogAreaRatio;
+    options.max_iterations = 4;
+    options.threads = threads;
+    const auto report = optimize_on_sphere(ico.positions, ico.triangles, points, fixed, options);
+    EXPECT_EQ(report.iterations, 4);
+    if (reference.empty())
+      reference = points;
+    else
+      EXPECT_EQ(points, reference) << threads << " threads";
+  }
+}
+
+TEST(TriangleEnergy, EquilateralHalfDetHasTheSolidAngle) {
+  // The equilateral spherical triangle whose ½·det equilateral_half_det gives has the solid angle asked
+  // for, from tiny triangles (a 1e-20 share of the sphere) to nearly a hemisphere.
+  for (const double omega : {1e-20, 1e-12, 1e-6, 1e-3, 0.1, 1.0, 3.0, 6.0}) {
+    const double half_det = detail::equilateral_half_det(omega);
+    // Corners at angular distance ρ from +z, 120° apart: half_det = (3√3/4) sin²ρ cos ρ; find ρ by bisection.
+    double low = 0, high = std::numbers::pi / 2;
+    const double peak = std::atan(std::sqrt(2.0));    // the maximum of sin²ρ cos ρ: large triangles lie beyond it
+    const bool large = omega > std::numbers::pi / 2;  // the solid angle at the peak
+    (large ? low : high) = peak;
+    for (int i = 0; i < 200; ++i) {
+      const double middle = 0.5 * (low + high);
+      const double value = 0.75 * std::sqrt(3.0) * std::sin(middle) * std::sin(middle) * std::cos(middle);
+      ((value < half_det) != large ? low : high) = middle;
+    }
+    const double rho = 0.5 * (low + high);
+    Vec3 corner[3];
+    for (int k = 0; k < 3; ++k) {
+      const double phi = 2 * std::numbers::pi * k / 3;
+      corner[k] = {std::sin(rho) * std::cos(phi), std::sin(rho) * std::sin(phi), std::cos(rho)};
+    }
+    // Van Oosterom & Strackee, the determinant from edge vectors (precise for tiny triangles).
+    const double solid =
+        2 * std::atan2(dot(corner[0], cross(corner[1] - corner[0], corner[2] - corner[0])),
+                       1 + dot(corner[0], corner[1]) + dot(corner[1], corner[2]) + dot(corner[2], corner[0]));
+    EXPECT_NEAR(solid, omega, 1e-8 * omega) << omega;
+  }
 }
 
 TEST(OptimizeOnSphere, LiftsCollapsedTriangles) {

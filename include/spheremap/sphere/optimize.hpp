@@ -46,6 +46,8 @@ struct SphereOptimizeOptions {
   /// Surface triangles with an angle below this (radians) count as equilateral of their area: a needle
   /// would make the energy as stiff as its cotangent.
   double min_rest_angle = 1e-3;
+  /// Threads for the per-triangle work (0: one per hardware thread). The result is the same for any count.
+  int threads = 0;
 };
 
 /// Why optimize_on_sphere stopped (report.json: map.fallback.final_stop_reason).
