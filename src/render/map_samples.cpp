@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 
@@ -17,6 +18,7 @@ namespace spheremap {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = std::numbers::pi;
 
 // The plane point at (column + fx, row + fy) of a width x height image of the projection's rectangle.
 PlanePoint plane_point(const PlanePoint& half, int width, int height, double column, double row) {
@@ -37,7 +39,7 @@ MapSamples sample_map(const SphereLocator& locator, Projection projection, int w
       for (int column = 0; column < width; ++column) {
         const auto at = unproject(projection, plane_point(half, width, height, column + 0.5, row + 0.5));
         if (!at) continue;
-        const SphereHit hit = locate_on_sphere(locator, direction_of(*at));
+        const SphereHit hit = locate_on_sphere(locator, direction_of(*at), kPi / 2 - at->latitude, at->longitude);
         const std::size_t i = static_cast<std::size_t>(row) * width + column;
         samples.triangle[i] = hit.triangle;
         samples.weights[i] = {static_cast<float>(hit.weights[0]), static_cast<float>(hit.weights[1]),
@@ -120,13 +122,13 @@ MapSamples sample_grid(const SphereLocator& locator, Projection projection, int 
   return sample_map(locator, projection, columns * kGridSubsamples, rows * kGridSubsamples, threads);
 }
 
-std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid) {
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid, int threads) {
   if (grid.width % kGridSubsamples != 0 || grid.height % kGridSubsamples != 0 || grid.width == 0)
     throw std::invalid_argument("map_grid_tsv: the samples are not those of sample_grid");
   const int columns = grid.width / kGridSubsamples, rows = grid.height / kGridSubsamples;
   const PlanePoint half = projection_half_extent(grid.projection);
   std::vector<std::string> lines(static_cast<std::size_t>(rows));
-  detail::parallel_ranges(rows, 4, detail::surface_threads(0), [&](std::int64_t first, std::int64_t last) {
+  detail::parallel_ranges(rows, 4, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
     for (auto row = static_cast<int>(first); row < last; ++row)
       for (int column = 0; column < columns; ++column) {
         const auto centre = unproject(grid.projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));

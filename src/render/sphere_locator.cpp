@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -19,8 +20,8 @@ Vec3 normalized(const Vec3& v) {
   return {v[0] / n, v[1] / n, v[2] / n};
 }
 
-double det3(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
 double angle_between(const Vec3& a, const Vec3& b) {
@@ -123,23 +124,29 @@ SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::
   l.cell_triangles.resize(static_cast<std::size_t>(counts[cells]));
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for_each_cell(l, caps[t], [&](int cell) { l.cell_triangles[counts[cell]++] = static_cast<std::int32_t>(t); });
+  l.edge_normals.reserve(triangles.size());
+  for (const Triangle& t : triangles) {
+    const Vec3& a = l.vertices[t[0]];
+    const Vec3& b = l.vertices[t[1]];
+    const Vec3& c = l.vertices[t[2]];
+    const Vec3 n0 = cross(b, c), n1 = cross(c, a), n2 = cross(a, b);
+    l.edge_normals.push_back({n0[0], n0[1], n0[2], n1[0], n1[1], n1[2], n2[0], n2[1], n2[2]});
+  }
   return l;
 }
 
-SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction) {
-  const double theta = colatitude(normalized(direction));
-  const int row = std::clamp(static_cast<int>(theta / kPi * l.rows), 0, l.rows - 1);
-  const int columns = l.row_columns[row];
-  const int column = std::clamp(static_cast<int>(azimuth(direction) / (2 * kPi) * columns), 0, columns - 1);
-  const int cell = l.row_first_cell[row] + column;
+namespace {
+
+// The first candidate of `cell`, in index order, that contains `direction`, else the one it is least outside
+// (weights clamped).
+SphereHit locate_in_cell(const SphereLocator& l, const Vec3& d, int cell) {
   SphereHit best;
   double best_score = -std::numeric_limits<double>::infinity();
   for (std::int32_t k = l.cell_first[cell]; k < l.cell_first[cell + 1]; ++k) {
     const std::int32_t t = l.cell_triangles[k];
-    const Vec3& a = l.vertices[l.triangles[t][0]];
-    const Vec3& b = l.vertices[l.triangles[t][1]];
-    const Vec3& c = l.vertices[l.triangles[t][2]];
-    const std::array<double, 3> w{det3(direction, b, c), det3(a, direction, c), det3(a, b, direction)};
+    const std::array<double, 9>& n = l.edge_normals[t];
+    const std::array<double, 3> w{d[0] * n[0] + d[1] * n[1] + d[2] * n[2], d[0] * n[3] + d[1] * n[4] + d[2] * n[5],
+                                  d[0] * n[6] + d[1] * n[7] + d[2] * n[8]};
     const double total = w[0] + w[1] + w[2];
     if (!(total > 0)) continue;  // the point is behind the triangle's plane
     const double score = std::min({w[0], w[1], w[2]}) / total;
@@ -151,6 +158,25 @@ SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction) {
   const double total = best.weights[0] + best.weights[1] + best.weights[2];
   for (double& w : best.weights) w /= total;
   return best;
+}
+
+int cell_of(const SphereLocator& l, double theta, double phi) {
+  const int row = std::clamp(static_cast<int>(theta / kPi * l.rows), 0, l.rows - 1);
+  const int columns = l.row_columns[row];
+  const int column = std::clamp(static_cast<int>(phi / (2 * kPi) * columns), 0, columns - 1);
+  return l.row_first_cell[row] + column;
+}
+
+}  // namespace
+
+SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction) {
+  return locate_in_cell(l, direction, cell_of(l, colatitude(normalized(direction)), azimuth(direction)));
+}
+
+SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction, double theta, double phi) {
+  phi = std::fmod(phi, 2 * kPi);
+  if (phi < 0) phi += 2 * kPi;
+  return locate_in_cell(l, direction, cell_of(l, theta, phi));
 }
 
 }  // namespace spheremap
