@@ -37,7 +37,7 @@ std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::pat
     throw InputError(fmt::format("{}: cannot create the pictures folder: {}", pictures.string(), error.message()));
   MapFigureOptions options;
   options.threads = threads;
-  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles, threads);
   const auto size = map_image_size(options);
   // One sampling serves every property's map.
   const MapSamples samples = sample_map(locator, Projection::mollweide, size[0], size[1], threads);

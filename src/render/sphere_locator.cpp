@@ -1,6 +1,8 @@
 // The bucket grid of a sphere map and the point location in it (see sphere_locator.hpp).
 #include "spheremap/render/sphere_locator.hpp"
 
+#include "../util/parallel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,10 +26,9 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-double angle_between(const Vec3& a, const Vec3& b) {
-  const Vec3 cross{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return std::atan2(std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]),
-                    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+double distance2(const Vec3& a, const Vec3& b) {
+  const Vec3 d{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
 double colatitude(const Vec3& u) { return std::acos(std::clamp(u[2], -1.0, 1.0)); }
@@ -53,8 +54,9 @@ CapCells cap_cells(const SphereLocator& l, const Triangle& t) {
   // A cap wider than a hemisphere is not convex: such a triangle goes into every cell.
   if (std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]) < 1e-3) return cells;
   const Vec3 centre = normalized(sum);
-  const double radius =
-      std::max({angle_between(centre, a), angle_between(centre, b), angle_between(centre, c)}) + kCapMargin;
+  // The angle to the farthest corner, from the longest chord (one asin instead of three atan2).
+  const double chord2 = std::max({distance2(centre, a), distance2(centre, b), distance2(centre, c)});
+  const double radius = 2 * std::asin(std::min(1.0, std::sqrt(chord2) / 2)) + kCapMargin;
   if (radius >= kPi / 2) return cells;
   const double theta = colatitude(centre);
   const double row_height = kPi / l.rows;
@@ -101,7 +103,8 @@ void lay_out_grid(SphereLocator& l) {
 
 }  // namespace
 
-SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles) {
+SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
+                                  int threads) {
   SphereLocator l;
   l.vertices.reserve(vertices.size());
   for (const Vec3& v : vertices) l.vertices.push_back(normalized(v));
@@ -112,26 +115,42 @@ SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::
   l.triangles = triangles;
   lay_out_grid(l);
   const int cells = l.row_first_cell[l.rows];
-  std::vector<CapCells> caps;
-  caps.reserve(triangles.size());
+  // Each triangle's cap and edge normals on their own (in parallel; each depends on its triangle only), then the
+  // buckets in triangle order.
+  std::vector<CapCells> caps(triangles.size());
+  l.edge_normals.resize(triangles.size());
+  detail::parallel_ranges(static_cast<std::int64_t>(triangles.size()), 8192, detail::surface_threads(threads),
+                          [&](std::int64_t first, std::int64_t last) {
+                            for (auto t = static_cast<std::size_t>(first); t < static_cast<std::size_t>(last); ++t) {
+                              caps[t] = cap_cells(l, triangles[t]);
+                              const Vec3& a = l.vertices[triangles[t][0]];
+                              const Vec3& b = l.vertices[triangles[t][1]];
+                              const Vec3& c = l.vertices[triangles[t][2]];
+                              const Vec3 n0 = cross(b, c), n1 = cross(c, a), n2 = cross(a, b);
+                              l.edge_normals[t] = {n0[0], n0[1], n0[2], n1[0], n1[1], n1[2], n2[0], n2[1], n2[2]};
+                            }
+                          });
+  // Bands of rows side by side: each band's cells are its own, and each band takes the triangles in index order,
+  // so every cell lists its triangles in index order whatever the number of bands.
+  const int bands = std::min(l.rows, detail::surface_threads(threads));
+  const auto in_band = [&](int band, const CapCells& cap, auto&& add) {
+    CapCells clipped = cap;
+    clipped.row_first = std::max(cap.row_first, band * l.rows / bands);
+    clipped.row_last = std::min(cap.row_last, (band + 1) * l.rows / bands - 1);
+    if (clipped.row_first <= clipped.row_last) for_each_cell(l, clipped, add);
+  };
   std::vector<std::int32_t> counts(static_cast<std::size_t>(cells) + 1, 0);
-  for (const Triangle& t : triangles) {
-    caps.push_back(cap_cells(l, t));
-    for_each_cell(l, caps.back(), [&](int cell) { ++counts[cell + 1]; });
-  }
+  detail::parallel_chunks(bands, bands, [&](std::int64_t band, int) {
+    for (const CapCells& cap : caps) in_band(static_cast<int>(band), cap, [&](int cell) { ++counts[cell + 1]; });
+  });
   for (int cell = 0; cell < cells; ++cell) counts[cell + 1] += counts[cell];
   l.cell_first = counts;
   l.cell_triangles.resize(static_cast<std::size_t>(counts[cells]));
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for_each_cell(l, caps[t], [&](int cell) { l.cell_triangles[counts[cell]++] = static_cast<std::int32_t>(t); });
-  l.edge_normals.reserve(triangles.size());
-  for (const Triangle& t : triangles) {
-    const Vec3& a = l.vertices[t[0]];
-    const Vec3& b = l.vertices[t[1]];
-    const Vec3& c = l.vertices[t[2]];
-    const Vec3 n0 = cross(b, c), n1 = cross(c, a), n2 = cross(a, b);
-    l.edge_normals.push_back({n0[0], n0[1], n0[2], n1[0], n1[1], n1[2], n2[0], n2[1], n2[2]});
-  }
+  detail::parallel_chunks(bands, bands, [&](std::int64_t band, int) {
+    for (std::size_t t = 0; t < caps.size(); ++t)
+      in_band(static_cast<int>(band), caps[t],
+              [&](int cell) { l.cell_triangles[counts[cell]++] = static_cast<std::int32_t>(t); });
+  });
   return l;
 }
 

@@ -40,9 +40,11 @@ struct SphereHit {
 };
 
 /// The locator of a map: `vertices` on (or near: they are normalized) the unit sphere, `triangles`
-/// counter-clockwise seen from outside. About one cell per two triangles.
+/// counter-clockwise seen from outside. About one cell per two triangles. Runs on `threads` threads (0: all;
+/// the locator does not depend on it).
 /// Preconditions: indices in range, no zero vertex. Throws std::invalid_argument if an index is out of range.
-SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles);
+SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
+                                  int threads = 0);
 
 /// The triangle under `direction` (any non-zero length): the first candidate, in index order, that contains
 /// it (edges and corners included). Where rounding leaves a point on an edge outside every candidate, the
