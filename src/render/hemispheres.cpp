@@ -123,6 +123,15 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
   return pixels;
 }
 
+// Where the top of the trace seen through `view` lies in the figure (y, pixels), tubes included.
+double trace_top(const std::vector<TracePath>& trace, const Vec3& centre, const View& view, double scale,
+                 const PanelRect& panel) {
+  double top = panel.y + panel.height / 2;
+  for (const TracePath& path : trace)
+    for (const Vec3& p : path.points) top = std::min(top, panel.y + panel.height / 2 - view(sub(p, centre))[1] * scale);
+  return top - std::max(2.0, panel.width / 75) * 1.45 / 2;
+}
+
 // The trace seen through `view`, as tubes: segments far to near, each a dark line under a coloured one.
 void draw_trace(cairo_t* cr, const std::vector<TracePath>& trace, const SurfaceProperty& property,
                 const ValueRange& range, const Vec3& centre, const View& view, double scale, const PanelRect& panel) {
@@ -241,11 +250,16 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
                                  {&globe.sphere, &globe.sphere, &origin, &front, globe_scale},
                                  {&globe.sphere, &globe.sphere, &origin, &back, globe_scale}}};
   const std::string letters = with_trace ? "bcde" : "abcd";
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    const Job& job = jobs[k];
-    std::vector<std::uint32_t> pixels =
+  // The four panels side by side (each on one thread: its rasterization is serial), then laid out in order.
+  std::array<std::vector<std::uint32_t>, 4> panel_pixels;
+  detail::parallel_chunks(4, detail::surface_threads(options.threads), [&](std::int64_t k, int) {
+    const Job& job = jobs[static_cast<std::size_t>(k)];
+    panel_pixels[static_cast<std::size_t>(k)] =
         render_panel(globe, property, range, *job.positions, *job.normals, *job.centre, *job.view, job.scale, side,
-                     side, options.supersampling, options.threads);
+                     side, options.supersampling, 1);
+  });
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    std::vector<std::uint32_t>& pixels = panel_pixels[k];
     cairo_surface_t* image = render_detail::image_surface(pixels, side, side);
     cairo_set_source_surface(cr, image, panels[k].x, panels[k].y);
     cairo_paint(cr);
@@ -259,11 +273,14 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
   if (with_trace) {
     const PanelRect trace_panel = panel_at(0, 0.5, "backbone, front");  // between the two rows
     draw_trace(cr, options.trace, property, range, views.centre, front, surface_scale, trace_panel);
+    // The label just above the trace (which is smaller than its panel: the surface's scale), clear of its tubes.
+    const double label_y = std::max(trace_panel.y, trace_top(options.trace, views.centre, front, surface_scale,
+                                                             trace_panel)) - 0.9 * font_size;
     render_detail::set_font(cr, font_size, true);
-    render_detail::draw_text(cr, trace_panel.x, trace_panel.y - 0.45 * font_size, "a", Align::left);
+    render_detail::draw_text(cr, trace_panel.x, label_y, "a", Align::left);
     render_detail::set_font(cr, font_size);
-    render_detail::draw_text(cr, trace_panel.x + 1.3 * font_size, trace_panel.y - 0.45 * font_size, trace_panel.label,
-                             Align::left, {60, 60, 60});
+    render_detail::draw_text(cr, trace_panel.x + 1.3 * font_size, label_y, trace_panel.label, Align::left,
+                             {60, 60, 60});
   }
   render_detail::set_font(cr, title_size, true);
   render_detail::draw_text(cr, w / 2, margin + title_size,
