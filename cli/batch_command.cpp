@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "pictures.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/pipeline/batch.hpp"
 #include "spheremap/text.hpp"
@@ -73,7 +74,7 @@ struct BatchCommand {
   std::string output;
   int jobs = 0;
   MapCliOptions map;
-  bool quiet = false, force = false, retry_errors = false;
+  bool quiet = false, force = false, retry_errors = false, no_pictures = false;
   void add(CLI::App* command);
   int run();
 };
@@ -232,6 +233,8 @@ void BatchCommand::add(CLI::App* command) {
       ->check(CLI::PositiveNumber);
   command->add_flag("--force", force, "Redo every input, even those already complete (also when options changed)");
   command->add_flag("--retry-errors", retry_errors, "Redo the inputs that failed before (error.json)");
+  command->add_flag("--no-pictures", no_pictures,
+                    "Write no pictures/ and no index.html in the inputs' folders (only the maps and reports)");
   add_quiet_flag(command, quiet, "No progress; print only the inputs that fail or are not certified");
   map.add(command, WeightingCount::kSeveral);
 }
@@ -244,6 +247,13 @@ int BatchCommand::run() {
   batch.jobs = jobs > 0 ? jobs : available_cores();
   batch.force = force;
   batch.retry_errors = retry_errors;
+  if (!no_pictures) {
+    // Several inputs at once already share the cores: then each draws on one thread.
+    const int picture_threads = batch.jobs > 1 ? 1 : 0;
+    batch.write_pictures = [picture_threads](const std::filesystem::path& folder, const MapJobResult& result) {
+      write_pictures(folder, result, picture_threads);
+    };
+  }
   const auto named = name_batch_inputs(expand_batch_inputs(inputs));
   Reporter reporter(named, batch.weights, quiet);
   install_signal_handlers();

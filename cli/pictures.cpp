@@ -134,10 +134,11 @@ std::array<int, 2> parse_size(const std::string& text) {
   return size;
 }
 
-void write_pictures(const std::filesystem::path& folder, const MapJobResult& result) {
+void write_pictures(const std::filesystem::path& folder, const MapJobResult& result, int threads) {
   const Globe globe = globe_of(result);
   write_map_pictures(folder, globe,
-                     viewer_data_for_map(result.prepared.mesh, result.map.sphere, globe.name, globe.properties));
+                     viewer_data_for_map(result.prepared.mesh, result.map.sphere, globe.name, globe.properties),
+                     threads);
 }
 
 }  // namespace spheremap::cli

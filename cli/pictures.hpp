@@ -36,7 +36,8 @@ ValueRange parse_range(const std::string& text);
 /// "WxH" (--size), both positive. Throws InputError naming the option otherwise.
 std::array<int, 2> parse_size(const std::string& text);
 
-/// Writes `folder`/pictures/ and `folder`/index.html for `result` (write_map_pictures). Throws as it.
-void write_pictures(const std::filesystem::path& folder, const MapJobResult& result);
+/// Writes `folder`/pictures/ and `folder`/index.html for `result` (write_map_pictures, on `threads` threads, 0:
+/// all; the bytes do not depend on it). Throws as it.
+void write_pictures(const std::filesystem::path& folder, const MapJobResult& result, int threads = 0);
 
 }  // namespace spheremap::cli

@@ -94,6 +94,8 @@ nlohmann::ordered_json batch_options_json(const BatchOptions& options) {
   }
   // Only when set: a batch.json written before --strict existed still matches the same options.
   if (job.structure.strict) json["structure"]["strict"] = true;
+  // Only without pictures: a batch.json written before batches drew pictures matches the default.
+  if (!options.write_pictures) json["pictures"] = false;
   return json;
 }
 

@@ -60,9 +60,15 @@ void map_input(const InputRuns& runs, const std::vector<std::size_t>& pending, c
     }
     MapJobOptions weighted = options.job;
     weighted.map.weights = pending_weights[j];
-    const auto written = capture([&] { write_map_outputs(runs.folder(pending[j]), results[j], weighted); });
+    const auto written = capture([&] {
+      if (options.write_pictures) options.write_pictures(runs.folder(pending[j]), results[j]);
+      write_map_outputs(runs.folder(pending[j]), results[j], weighted);
+    });
     results[j] = MapJobResult{};  // free the mesh and the map early
-    if (written) runs.record_error(pending[j], *written);
+    if (written) {
+      capture([&] { clear_run_folder(runs.folder(pending[j])); });  // no partial output: pictures written first go
+      runs.record_error(pending[j], *written);
+    }
   }
   if (!failure && options.isolate) record_peak_memory(runs, pending);
 }

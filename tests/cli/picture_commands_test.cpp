@@ -270,5 +270,40 @@ TEST_F(PictureCommands, ViewWritesTheViewerAndMapWritesPicturesUnlessTold) {
             testing_support::slurp(folder_ / "again" / "pictures" / "octant-hemispheres.png"));
 }
 
+
+// batch writes each run's pictures and viewer as `map` does (the same bytes), before report.json; --no-pictures
+// turns them off, and a root made with it refuses to resume with pictures.
+TEST_F(PictureCommands, BatchWritesThePicturesMapWritesUnlessTold) {
+  const fs::path inputs = folder_ / "inputs";
+  fs::create_directories(inputs);
+  testing_support::write_text(inputs / "peptide.pdb", kPeptide);
+  write_ply(inputs / "ball.ply", make_icosphere(2));
+  const auto batch = run_cli("batch " + inputs.string() + " -q --jobs 2 -o " + (folder_ / "b").string());
+  ASSERT_EQ(batch.exit_code, 0) << batch.output;
+  const auto map = run_cli("map " + (inputs / "peptide.pdb").string() + " -q -o " + (folder_ / "m").string());
+  ASSERT_EQ(map.exit_code, 0) << map.output;
+  std::set<std::string> pictures;
+  for (const auto& entry : fs::directory_iterator(folder_ / "b" / "peptide" / "pictures"))
+    pictures.insert(entry.path().filename().string());
+  EXPECT_EQ(pictures.size(), 10u);
+  for (const std::string& name : pictures)
+    EXPECT_EQ(testing_support::slurp(folder_ / "b" / "peptide" / "pictures" / name),
+              testing_support::slurp(folder_ / "m" / "pictures" / name))
+        << name;
+  EXPECT_EQ(testing_support::slurp(folder_ / "b" / "peptide" / "index.html"),
+            testing_support::slurp(folder_ / "m" / "index.html"));
+  EXPECT_TRUE(fs::exists(folder_ / "b" / "ball" / "pictures" / "octant-mollweide.png"));
+  EXPECT_TRUE(fs::exists(folder_ / "b" / "ball" / "index.html"));
+
+  const auto without = run_cli("batch " + inputs.string() + " -q --no-pictures -o " + (folder_ / "n").string());
+  ASSERT_EQ(without.exit_code, 0) << without.output;
+  EXPECT_TRUE(fs::exists(folder_ / "n" / "peptide" / "report.json"));
+  EXPECT_FALSE(fs::exists(folder_ / "n" / "peptide" / "pictures"));
+  EXPECT_FALSE(fs::exists(folder_ / "n" / "ball" / "index.html"));
+  const auto resumed = run_cli("batch " + inputs.string() + " -q -o " + (folder_ / "n").string());
+  EXPECT_EQ(resumed.exit_code, 1) << resumed.output;
+  EXPECT_NE(resumed.output.find("pictures"), std::string::npos) << resumed.output;
+}
+
 }  // namespace
 }  // namespace spheremap

@@ -37,11 +37,15 @@ struct BatchOptions {
   /// serial OpenBLAS, while separate processes are; a crash or an out-of-memory kill then also costs one
   /// input, not the batch.
   bool isolate = true;
+  /// Extra outputs of each run (the CLI's pictures and viewer: pipeline/ draws nothing), written into the run's
+  /// folder before its map outputs, so that report.json, written last, still marks a complete run. A throw
+  /// fails the run like a map error (error.json). Unset: none; batch.json then records "pictures": false.
+  std::function<void(const std::filesystem::path& folder, const MapJobResult& result)> write_pictures;
 };
 
 /// The options that decide the outputs, as stored in root/batch.json (weights, solver, repair, collapse
 /// floor, welding, component, ASCII, structure selection, radii, strict, probe, grid, keep_topology,
-/// simplification). Does not throw (but std::bad_alloc).
+/// simplification, and "pictures": false when write_pictures is unset). Does not throw (but std::bad_alloc).
 nlohmann::ordered_json batch_options_json(const BatchOptions& options);
 
 /// What happened to one input in this session.
