@@ -35,16 +35,19 @@ MapSamples sample_map(const SphereLocator& locator, Projection projection, int w
   samples.weights.assign(pixels, {0, 0, 0});
   const PlanePoint half = projection_half_extent(projection);
   detail::parallel_ranges(height, 16, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
-    for (auto row = static_cast<int>(first); row < last; ++row)
+    for (auto row = static_cast<int>(first); row < last; ++row) {
+      const RowUnprojection unproject_row(projection, plane_point(half, width, height, 0.5, row + 0.5).y);
       for (int column = 0; column < width; ++column) {
-        const auto at = unproject(projection, plane_point(half, width, height, column + 0.5, row + 0.5));
+        const auto at = unproject_row(plane_point(half, width, height, column + 0.5, row + 0.5).x);
         if (!at) continue;
-        const SphereHit hit = locate_on_sphere(locator, direction_of(*at), kPi / 2 - at->latitude, at->longitude);
+        const SphereHit hit =
+            locate_on_sphere(locator, unproject_row.direction(at->longitude), kPi / 2 - at->latitude, at->longitude);
         const std::size_t i = static_cast<std::size_t>(row) * width + column;
         samples.triangle[i] = hit.triangle;
         samples.weights[i] = {static_cast<float>(hit.weights[0]), static_cast<float>(hit.weights[1]),
                               static_cast<float>(hit.weights[2])};
       }
+    }
   });
   return samples;
 }

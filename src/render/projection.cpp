@@ -93,6 +93,48 @@ std::optional<GeoPoint> unproject(Projection projection, const PlanePoint& point
   return GeoPoint{latitude, c > 0 ? std::clamp(point.x / c, -kPi, kPi) : 0.0};
 }
 
+RowUnprojection::RowUnprojection(Projection projection, double y) : projection_(projection), y_(y) {
+  // The same expressions as mollweide_inverse and unproject, in the same order: the same bits.
+  if (projection == Projection::mollweide) {
+    const double ey = y / kSqrt2;
+    on_map_ = ey * ey <= 1 + kEdgeTolerance;
+    const double theta = std::asin(std::clamp(ey, -1.0, 1.0));
+    const double t = 2 * theta;
+    latitude_ = std::asin(std::clamp((t + std::sin(t)) / kPi, -1.0, 1.0));
+    scale_ = std::cos(theta);
+  } else {
+    on_map_ = std::abs(y) <= kPi / 2 + kEdgeTolerance;
+    latitude_ = std::clamp(y, -kPi / 2, kPi / 2);
+    scale_ = std::cos(latitude_);
+  }
+  cos_latitude_ = std::cos(latitude_);
+  sin_latitude_ = std::sin(latitude_);
+}
+
+std::optional<GeoPoint> RowUnprojection::operator()(double x) const {
+  if (!on_map_) return std::nullopt;
+  switch (projection_) {
+    case Projection::mollweide: {
+      const double ex = x / (2 * kSqrt2), ey = y_ / kSqrt2;
+      if (ex * ex + ey * ey > 1 + kEdgeTolerance) return std::nullopt;
+      const double c = scale_;
+      return GeoPoint{latitude_, c > 0 ? std::clamp(kPi * x / (2 * kSqrt2 * c), -kPi, kPi) : 0.0};
+    }
+    case Projection::equirectangular:
+      if (std::abs(x) > kPi + kEdgeTolerance) return std::nullopt;
+      return GeoPoint{latitude_, std::clamp(x, -kPi, kPi)};
+    case Projection::sinusoidal: break;
+  }
+  const double c = scale_;
+  if (std::abs(x) > kPi * c + kEdgeTolerance) return std::nullopt;
+  return GeoPoint{latitude_, c > 0 ? std::clamp(x / c, -kPi, kPi) : 0.0};
+}
+
+Vec3 RowUnprojection::direction(double longitude) const {
+  const double c = cos_latitude_;
+  return {c * std::cos(longitude), c * std::sin(longitude), sin_latitude_};
+}
+
 Vec3 direction_of(const GeoPoint& point) {
   const double c = std::cos(point.latitude);
   return {c * std::cos(point.longitude), c * std::sin(point.longitude), std::sin(point.latitude)};

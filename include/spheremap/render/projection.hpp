@@ -51,6 +51,24 @@ PlanePoint project(Projection projection, const GeoPoint& point);
 /// the rectangle). On the map's edge the longitude is ±π. Never throws.
 std::optional<GeoPoint> unproject(Projection projection, const PlanePoint& point);
 
+/// unproject along one row of the plane (y fixed), with what depends on y alone computed once, for sampling
+/// a map: row(x) equals unproject(projection, {x, y}) bit for bit, and so does direction(x) direction_of of
+/// it. Never throws.
+class RowUnprojection {
+ public:
+  RowUnprojection(Projection projection, double y);
+  [[nodiscard]] std::optional<GeoPoint> operator()(double x) const;
+  /// The unit vector of the point at x. Precondition: (*this)(x) is a point.
+  [[nodiscard]] Vec3 direction(double longitude) const;
+
+ private:
+  Projection projection_;
+  double y_;
+  bool on_map_ = false;                       // some point of the row may be on the map
+  double latitude_ = 0, cos_latitude_ = 0, sin_latitude_ = 0;
+  double scale_ = 0;                          // mollweide: 2√2 cos θ; sinusoidal: cos(latitude)
+};
+
 /// The unit vector of a globe point, and back (the direction need not be of unit length but must not be
 /// zero; longitude 0 at the poles). Never throw.
 Vec3 direction_of(const GeoPoint& point);
