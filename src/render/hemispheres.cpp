@@ -274,8 +274,9 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
     const PanelRect trace_panel = panel_at(0, 0.5, "backbone, front");  // between the two rows
     draw_trace(cr, options.trace, property, range, views.centre, front, surface_scale, trace_panel);
     // The label just above the trace (which is smaller than its panel: the surface's scale), clear of its tubes.
-    const double label_y = std::max(trace_panel.y, trace_top(options.trace, views.centre, front, surface_scale,
-                                                             trace_panel)) - 0.9 * font_size;
+    const double label_y =
+        std::max(trace_panel.y, trace_top(options.trace, views.centre, front, surface_scale, trace_panel)) -
+        0.9 * font_size;
     render_detail::set_font(cr, font_size, true);
     render_detail::draw_text(cr, trace_panel.x, label_y, "a", Align::left);
     render_detail::set_font(cr, font_size);

@@ -7,13 +7,13 @@
 
 #include <fmt/format.h>
 
+#include "../util/parallel.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
 #include "spheremap/pipeline/map_job.hpp"
 #include "spheremap/render/hemispheres.hpp"
 #include "spheremap/render/map_picture.hpp"
 #include "spheremap/render/viewer.hpp"
-#include "../util/parallel.hpp"
 
 namespace spheremap {
 

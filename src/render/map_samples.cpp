@@ -1,13 +1,14 @@
 // Sampling a globe through a projection: the pixels of a map and the cells of its numeric grid (see
 // map_picture.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
-#include <map>
 #include <numbers>
-#include <set>
 #include <stdexcept>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include "../util/parallel.hpp"
@@ -82,7 +83,9 @@ constexpr int kGridSubsamples = 4;  // per cell side
 
 struct CellSummary {
   double value = kNaN;
-  std::set<std::int32_t> residues;
+  // The residues under the cell's points (indices into globe.residues), ascending, each once.
+  std::array<std::int32_t, kGridSubsamples * kGridSubsamples> residues{};
+  int residue_count = 0;
 };
 
 // The cell's kGridSubsamples² points are the pixels of the fine samples it covers.
@@ -91,7 +94,9 @@ CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, 
   CellSummary cell;
   double sum = 0;
   int count = 0;
-  std::map<double, int> classes;
+  const bool categorical = property.info.scale == ScaleKind::categorical;
+  std::array<double, kGridSubsamples * kGridSubsamples> classes{};
+  int class_count = 0;
   for (int sy = 0; sy < kGridSubsamples; ++sy)
     for (int sx = 0; sx < kGridSubsamples; ++sx) {
       const std::size_t i = static_cast<std::size_t>(row * kGridSubsamples + sy) * fine.width +
@@ -102,16 +107,25 @@ CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, 
       const int nearest = w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
       const std::int32_t vertex = globe.triangles[triangle][nearest];
       if (!globe.vertex_residue.empty() && globe.vertex_residue[vertex] >= 0)
-        cell.residues.insert(globe.vertex_residue[vertex]);
+        cell.residues[cell.residue_count++] = globe.vertex_residue[vertex];
       const double v = value_at(globe, property, triangle, w);
       if (std::isnan(v)) continue;
-      if (property.info.scale == ScaleKind::categorical) ++classes[v];
+      if (categorical) classes[class_count++] = v;
       sum += v, ++count;
     }
-  if (property.info.scale == ScaleKind::categorical) {
+  std::sort(cell.residues.begin(), cell.residues.begin() + cell.residue_count);
+  cell.residue_count = static_cast<int>(std::unique(cell.residues.begin(), cell.residues.begin() + cell.residue_count) -
+                                        cell.residues.begin());
+  if (categorical) {
+    // The most frequent class, the smallest of equals.
+    std::sort(classes.begin(), classes.begin() + class_count);
     int best = 0;
-    for (const auto& [value, n] : classes)
-      if (n > best) best = n, cell.value = value;
+    for (int k = 0; k < class_count;) {
+      int n = 1;
+      while (k + n < class_count && classes[k + n] == classes[k]) ++n;
+      if (n > best) best = n, cell.value = classes[k];
+      k += n;
+    }
   } else if (count > 0) {
     cell.value = sum / count;
   }
@@ -130,22 +144,30 @@ std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, co
     throw std::invalid_argument("map_grid_tsv: the samples are not those of sample_grid");
   const int columns = grid.width / kGridSubsamples, rows = grid.height / kGridSubsamples;
   const PlanePoint half = projection_half_extent(grid.projection);
+  std::vector<std::string> ids;  // residue_id of each residue, once
+  ids.reserve(globe.residues.size());
+  for (const ResidueLabel& residue : globe.residues) ids.push_back(residue_id(residue));
   std::vector<std::string> lines(static_cast<std::size_t>(rows));
   detail::parallel_ranges(rows, 4, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
-    for (auto row = static_cast<int>(first); row < last; ++row)
+    for (auto row = static_cast<int>(first); row < last; ++row) {
+      fmt::memory_buffer out;
       for (int column = 0; column < columns; ++column) {
         const auto centre = unproject(grid.projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
         if (!centre) continue;
         const CellSummary cell = summarize_cell(globe, property, grid, row, column);
-        std::string residues;
-        for (const std::int32_t r : cell.residues) {
-          if (!residues.empty()) residues += ',';
-          residues += residue_id(globe.residues[r]);
+        fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}\t{}\t{:.3f}\t{:.3f}\t"), row, column,
+                       centre->latitude / kDegree, centre->longitude / kDegree);
+        if (!std::isnan(cell.value)) fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:.6g}"), cell.value);
+        out.push_back('\t');
+        for (int k = 0; k < cell.residue_count; ++k) {
+          if (k > 0) out.push_back(',');
+          const std::string& id = ids[static_cast<std::size_t>(cell.residues[k])];
+          out.append(id.data(), id.data() + id.size());
         }
-        lines[row] += fmt::format("{}\t{}\t{:.3f}\t{:.3f}\t{}\t{}\n", row, column, centre->latitude / kDegree,
-                                  centre->longitude / kDegree,
-                                  std::isnan(cell.value) ? "" : fmt::format("{:.6g}", cell.value), residues);
+        out.push_back('\n');
       }
+      lines[row] = fmt::to_string(out);
+    }
   });
   std::string tsv = "row\tcolumn\tlatitude\tlongitude\tvalue\tresidues\n";
   for (const auto& line : lines) tsv += line;

@@ -270,7 +270,6 @@ TEST_F(PictureCommands, ViewWritesTheViewerAndMapWritesPicturesUnlessTold) {
             testing_support::slurp(folder_ / "again" / "pictures" / "octant-hemispheres.png"));
 }
 
-
 // batch writes each run's pictures and viewer as `map` does (the same bytes), before report.json; --no-pictures
 // turns them off, and a root made with it refuses to resume with pictures.
 TEST_F(PictureCommands, BatchWritesThePicturesMapWritesUnlessTold) {

@@ -64,9 +64,9 @@ class RowUnprojection {
  private:
   Projection projection_;
   double y_;
-  bool on_map_ = false;                       // some point of the row may be on the map
+  bool on_map_ = false;  // some point of the row may be on the map
   double latitude_ = 0, cos_latitude_ = 0, sin_latitude_ = 0;
-  double scale_ = 0;                          // mollweide: 2√2 cos θ; sinusoidal: cos(latitude)
+  double scale_ = 0;  // mollweide: 2√2 cos θ; sinusoidal: cos(latitude)
 };
 
 /// The unit vector of a globe point, and back (the direction need not be of unit length but must not be
