@@ -13,7 +13,7 @@ W=uniform,cotan,mean-value
 run() {
   local name=$1; shift
   local start; start=$(date +%s.%N)
-  "$bin" batch "$P" -o "$out/$name" --jobs 2 --weights $W --force -q "$@" > "$out/$name.log" 2>&1 || true
+  "$bin" batch "$P" -o "$out/$name" --jobs 2 --weights $W --force -q --no-pictures "$@" > "$out/$name.log" 2>&1 || true
   printf '%-28s %6.1f s  %s\n' "$name" "$(echo "$(date +%s.%N) - $start" | bc)" "$(tail -1 "$out/$name.log")"
 }
 mkdir -p "$out"

@@ -19,7 +19,10 @@ if [ ! -d "$data/pdb/paper77" ] || [ ! -d "$data/meshes" ]; then
 fi
 rm -rf "$out"
 mkdir -p "$out/meshes"
-"$bin" batch "$data/pdb/paper77" "$data/pdb/misc" -o "$out/structures" --grid 1.0 --jobs 2 -q
+# The maps only: a batch draws pictures too since they became its default (binaries from before have no
+# --no-pictures, and drew none).
+no_pictures=$("$bin" batch --help 2>/dev/null | grep -q -- --no-pictures && echo --no-pictures)
+"$bin" batch "$data/pdb/paper77" "$data/pdb/misc" -o "$out/structures" --grid 1.0 --jobs 2 -q $no_pictures
 echo "batch exit $?"
 for f in "$data"/meshes/*.obj "$data"/meshes/*.off "$data"/meshes/*.ply; do
   n=$(basename "$f")
