@@ -132,7 +132,7 @@ std::string deflate_zlib(const std::string& bytes) {
   std::string out(size, '\0');
   const int status =
       compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(bytes.data()),
-                static_cast<uLong>(bytes.size()), Z_DEFAULT_COMPRESSION);
+                static_cast<uLong>(bytes.size()), Z_BEST_SPEED);
   if (status != Z_OK)
     throw std::runtime_error("zlib could not compress the viewer's data (status " + std::to_string(status) + ")");
   out.resize(size);

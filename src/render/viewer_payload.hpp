@@ -18,7 +18,8 @@ struct ViewerPayload {
 /// Packs `data`. Precondition: validated (viewer.cpp checks it first). Deterministic.
 ViewerPayload pack_viewer_payload(const ViewerData& data);
 
-/// zlib stream (RFC 1950, what DecompressionStream("deflate") reads) of `bytes`, at zlib's default level.
+/// zlib stream (RFC 1950, what DecompressionStream("deflate") reads) of `bytes`, at level 1 (Z_BEST_SPEED): on
+/// 5hr7's viewer data a third of the default level's time for 4% more bytes.
 /// Throws std::runtime_error if zlib fails.
 std::string deflate_zlib(const std::string& bytes);
 
