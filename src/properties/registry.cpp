@@ -56,7 +56,7 @@ std::vector<PropertyDefinition> make_registry() {
                  "Wimley-White (1996) interface scale of the vertex's residue (lower: more hydrophobic)"),
       definition(kEisenberg, "", K::sequential, scale_range(ResidueScale::kEisenberg), B::kStructure, true,
                  "Eisenberg et al. (1984) consensus hydrophobicity of the vertex's residue"),
-      definition(kSequencePosition, "", K::sequential, ValueRange{0, 1}, B::kStructure, true,
+      definition(kSequencePosition, "", K::spectrum, ValueRange{0, 1}, B::kStructure, true,
                  "Position of the vertex's residue along its chain: 0 at the N-terminus, 1 at the C-terminus"),
       definition(kResidueNumber, "", K::sequential, std::nullopt, B::kStructure, true,
                  "Residue number of the vertex's atom, as in the file"),
