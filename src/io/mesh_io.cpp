@@ -82,17 +82,19 @@ std::string read_whole_file(const std::filesystem::path& path, const std::string
     fail(file, fmt::format("the file cannot be opened ({})", std::strerror(errno)),
          "check that it is readable (permissions)");
   }
-  // Read in chunks instead of trusting the file size: special files report size 0.
+  // Read in chunks instead of trusting the file size (special files report size 0), the first one the size
+  // reported and a byte more, so that a small file costs no megabyte of buffer.
   std::string bytes;
   constexpr std::size_t kChunk = std::size_t{1} << 20;
   const auto size_hint = std::filesystem::file_size(path, ec);
-  if (!ec) bytes.reserve(static_cast<std::size_t>(size_hint));
+  std::size_t request = ec ? kChunk : static_cast<std::size_t>(size_hint) + 1;
   std::size_t used = 0;
   for (;;) {
-    bytes.resize(used + kChunk);
-    const std::size_t got = std::fread(bytes.data() + used, 1, kChunk, stream.get());
+    bytes.resize(used + request);
+    const std::size_t got = std::fread(bytes.data() + used, 1, request, stream.get());
     used += got;
-    if (got < kChunk) break;
+    if (got < request) break;
+    request = kChunk;
   }
   bytes.resize(used);
   if (std::ferror(stream.get())) {

@@ -52,6 +52,9 @@ class Lines {
     return false;
   }
 
+  // Bytes not read yet.
+  [[nodiscard]] std::size_t remaining() const { return text_.size() - std::min(position_, text_.size()); }
+
   [[nodiscard]] InputError error(const std::string& problem) const {
     return InputError(fmt::format("{}:{}: {}; is it an OpenDX map as APBS writes it (write pot dx)?", path_.string(),
                                   number_, problem));
@@ -141,7 +144,8 @@ DxGrid read_dx(const std::filesystem::path& path) {
   Lines lines(content.str(), path);
   DxGrid grid;
   const std::int64_t items = read_header(lines, grid);
-  grid.values.reserve(static_cast<std::size_t>(items));
+  // Reserve no more than the rest of the file can hold (a value takes two bytes at least): a header may lie.
+  grid.values.reserve(std::min(static_cast<std::size_t>(items), lines.remaining() / 2 + 1));
   std::string_view line;
   while (static_cast<std::int64_t>(grid.values.size()) < items) {
     if (!lines.next(line))

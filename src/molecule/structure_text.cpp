@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -19,7 +20,12 @@
 namespace spheremap::molecule_detail {
 namespace {
 
-constexpr std::size_t kMaxInflated = std::size_t{3} << 30;  // 3 GiB: gemmi's own limit for .gz input
+// A .gz is refused as soon as what it inflates to passes either limit (docs/robustness.md), so that a
+// gzip bomb (a small file of ~1000:1 that inflates to gigabytes) costs at most this much memory. Structure
+// files compress 4-10:1; the largest entries of the PDB are a few hundred MB uncompressed.
+constexpr std::size_t kMaxInflated = std::size_t{1} << 30;      // 1 GiB
+constexpr std::size_t kRatioCheckedFrom = std::size_t{64} << 20;  // 64 MiB
+constexpr std::size_t kMaxRatio = 100;
 
 bool has_gz_name(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
@@ -33,14 +39,19 @@ std::string read_bytes(const std::filesystem::path& path) {
   if (!stream)
     throw InputError(
         fmt::format("{}: cannot open the file ({}); check that it is readable", path.string(), std::strerror(errno)));
+  // In chunks (special files report size 0), the first one the size reported and a byte more.
   std::string bytes;
   constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::error_code ec;
+  const auto size_hint = std::filesystem::file_size(path, ec);
+  std::size_t request = ec ? kChunk : static_cast<std::size_t>(size_hint) + 1;
   std::size_t used = 0;
   for (;;) {
-    bytes.resize(used + kChunk);
-    const std::size_t got = std::fread(bytes.data() + used, 1, kChunk, stream.get());
+    bytes.resize(used + request);
+    const std::size_t got = std::fread(bytes.data() + used, 1, request, stream.get());
     used += got;
-    if (got < kChunk) break;
+    if (got < request) break;
+    request = kChunk;
   }
   bytes.resize(used);
   if (std::ferror(stream.get()))
@@ -52,6 +63,21 @@ std::string read_bytes(const std::filesystem::path& path) {
 [[noreturn]] void gzip_fail(const std::filesystem::path& path, const std::string& problem) {
   throw InputError(
       fmt::format("{}: {}; download or compress the file again (gzip -t checks a .gz file)", path.string(), problem));
+}
+
+// Throws InputError once `inflated` bytes (from `consumed` compressed ones) pass a limit of kMaxInflated.
+void check_inflated_size(const std::filesystem::path& path, std::size_t inflated, std::size_t consumed) {
+  const bool too_large = inflated > kMaxInflated;
+  const bool too_compressed = inflated > kRatioCheckedFrom && inflated / std::max<std::size_t>(consumed, 1) > kMaxRatio;
+  if (!too_large && !too_compressed) return;
+  const std::string problem =
+      too_large ? fmt::format("it inflates to more than {} MiB (the limit for a .gz file)", kMaxInflated >> 20)
+                : fmt::format("it inflates to more than {} times its compressed size ({} MiB from {} bytes so far; the "
+                              "limit for a .gz file beyond {} MiB is {}:1, and structure files compress about 4-10:1)",
+                              kMaxRatio, inflated >> 20, consumed, kRatioCheckedFrom >> 20, kMaxRatio);
+  throw InputError(fmt::format("{}: {}, so inflating it stopped there (a gzip bomb?); if it really is a structure, "
+                               "decompress it (gunzip -k) and map the uncompressed file, which has no such limit",
+                               path.string(), problem));
 }
 
 // Inflates every gzip member of `compressed`. Bytes after the last member that do not start another
@@ -70,15 +96,14 @@ std::string inflate_gzip(const std::filesystem::path& path, const std::string& c
   const std::unique_ptr<z_stream, int (*)(z_stream*)> guard(&z, inflateEnd);
   std::string out;
   std::size_t offset = 0;
-  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  constexpr std::size_t kChunk = std::size_t{64} << 10;  // the string grows geometrically; this is per call
   for (;;) {
     z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data() + offset));
     z.avail_in = static_cast<uInt>(std::min<std::size_t>(compressed.size() - offset, 1u << 30));
     int status = Z_OK;
     while (status == Z_OK) {
       const std::size_t used = out.size();
-      if (used >= kMaxInflated)
-        gzip_fail(path, "it inflates to more than 3 GiB, more than spheremap reads from a .gz file");
+      check_inflated_size(path, used, offset);
       out.resize(used + kChunk);
       z.next_out = reinterpret_cast<Bytef*>(out.data() + used);
       z.avail_out = static_cast<uInt>(kChunk);

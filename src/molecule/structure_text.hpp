@@ -17,7 +17,8 @@ struct StructureText {
 /// Reads `path` whole; a name ending in .gz (any case) must be a complete gzip file (one or more members,
 /// each ending with its CRC-32 and length, both checked). Then the warnings of truncation_warnings.
 /// Throws InputError naming the file when it is missing, a folder, unreadable, empty, not gzip although
-/// named .gz, a gzip stream that ends early or is corrupt (CRC), or larger than 3 GiB inflated.
+/// named .gz, a gzip stream that ends early or is corrupt (CRC), or one that inflates past a limit (1 GiB, or
+/// 100 times its compressed size beyond 64 MiB: a gzip bomb), checked as it inflates.
 StructureText read_structure_text(const std::filesystem::path& path);
 
 /// Signs that a text structure file was cut short: its last line has no line break, or (PDB and PQR) its

@@ -94,6 +94,27 @@ std::string gzip(const std::string& bytes) {
   return out;
 }
 
+// A gzip bomb: `megabytes` MiB of zero bytes in a gzip stream of about a thousandth of that.
+std::string gzip_of_zeros(std::size_t megabytes) {
+  z_stream z{};
+  if (deflateInit2(&z, 1, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK) return {};
+  const std::string zeros(std::size_t{1} << 20, '\0');
+  std::string out, buffer(std::size_t{1} << 16, '\0');
+  for (std::size_t m = 0; m < megabytes; ++m) {
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(zeros.data()));
+    z.avail_in = static_cast<uInt>(zeros.size());
+    const int flush = m + 1 == megabytes ? Z_FINISH : Z_NO_FLUSH;
+    do {
+      z.next_out = reinterpret_cast<Bytef*>(buffer.data());
+      z.avail_out = static_cast<uInt>(buffer.size());
+      deflate(&z, flush);
+      out.append(buffer.data(), buffer.size() - z.avail_out);
+    } while (z.avail_out == 0 || z.avail_in > 0);
+  }
+  deflateEnd(&z);
+  return out;
+}
+
 // The files a case folder holds besides the copy of files/: what cannot be a small text file.
 void generate_files(const fs::path& folder) {
   const std::string pdb = slurp(kTableFolder / "files" / "small.pdb");
@@ -182,6 +203,8 @@ TEST_P(BadInput, Case) {
   ASSERT_GE(c.exit_code, 0) << "cases.tsv: not five tab-separated fields: " << c.arguments;
   fs::copy(kTableFolder / "files", folder_, fs::copy_options::recursive);
   generate_files(folder_);
+  // 80 MiB inflated: made only for its case (it takes a moment).
+  if (c.arguments.find("bomb.pdb.gz") != std::string::npos) write_text(folder_ / "bomb.pdb.gz", gzip_of_zeros(80));
   std::vector<std::string> arguments;
   for (auto& argument : split(c.arguments, ' ')) {
     if (argument.empty()) continue;

@@ -79,7 +79,8 @@ struct Molecule {
 /// are warnings in the report; options.strict makes every warning an error. Text read from the file (names, chains,
 /// elements) is made valid UTF-8 (valid_utf8).
 /// Throws InputError naming the file, the problem and the fix when the file is missing, a folder,
-/// unreadable, empty, not a structure, a truncated or corrupt .gz, has a non-finite or absurd coordinate
+/// unreadable, empty, not a structure, a truncated or corrupt .gz, a .gz that inflates past 1 GiB or past
+/// 100 times its size beyond 64 MiB (a gzip bomb; stopped as it inflates), has a non-finite or absurd coordinate
 /// (beyond ±1e5 Å) or a non-finite PQR charge, has fewer than two atoms after filtering, or the model /
 /// chains asked for do not exist; with options.strict, when there is a warning.
 Molecule read_structure(const std::filesystem::path& path, const StructureOptions& options = {});
