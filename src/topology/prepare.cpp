@@ -316,7 +316,7 @@ FaceComponents face_components(std::size_t triangle_count, const std::vector<Edg
 }
 
 // The component options.component asks for; throws MeshRefused when there are several and it says to
-// refuse them, or when the one asked for does not exist.
+// refuse them, and InputError (a command-line error) when the one asked for does not exist.
 std::int32_t choose_component(const std::vector<std::int64_t>& sizes, const PrepareOptions& options,
                               const std::string& name) {
   if (sizes.size() > 1) {
@@ -335,12 +335,12 @@ std::int32_t choose_component(const std::vector<std::int64_t>& sizes, const Prep
     if (options.component.mode == ComponentChoice::Mode::kNumbered && options.component.number >= 0 &&
         options.component.number < static_cast<std::int32_t>(sizes.size()))
       return options.component.number;
-    throw MeshRefused(fmt::format("{}: --component {} does not exist: the mesh has components 0 to {}", name,
-                                  options.component.number, sizes.size() - 1));
+    throw InputError(fmt::format("{}: --component {} does not exist: the mesh has {} components, numbered 0 to {}",
+                                 name, options.component.number, sizes.size(), sizes.size() - 1));
   }
   if (options.component.mode == ComponentChoice::Mode::kNumbered && options.component.number >= 1)
-    throw MeshRefused(fmt::format("{}: --component {} does not exist: the mesh has a single component (0)", name,
-                                  options.component.number));
+    throw InputError(fmt::format("{}: --component {} does not exist: the mesh has 1 component, numbered 0", name,
+                                 options.component.number));
   return 0;
 }
 

@@ -182,9 +182,19 @@ TEST(Prepare, RefusesPinchedVertexAndSeveralComponents) {
   const auto kept = prepare_mesh(two, second);
   EXPECT_EQ(kept.report.component_kept, 1);
   EXPECT_DOUBLE_EQ(kept.mesh.positions[0][0], 5.0);
+  // A component the mesh does not have is a command-line error (exit 1) that gives the count.
   PrepareOptions missing;
   missing.component = ComponentChoice::numbered(2);
-  EXPECT_NE(refusal_message(two, missing).find("does not exist"), std::string::npos);
+  try {
+    prepare_mesh(two, missing);
+    ADD_FAILURE() << "--component 2 of 2 components accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--component 2 does not exist: the mesh has 2 components"),
+              std::string::npos)
+        << e.what();
+  }
+  missing.component = ComponentChoice::numbered(1);
+  EXPECT_THROW(prepare_mesh(tetrahedron_soup(), missing), InputError);
 }
 
 TEST(Prepare, RefusesTorusWithItsGenus) {

@@ -66,8 +66,9 @@ struct PreparedMesh {
 /// options.component says which), orientability, genus. Orients every triangle consistently and
 /// outward (positive enclosed volume).
 /// Throws MeshRefused (exit code 2) naming options.source_name, the problem, how many and the fix.
-/// Throws InputError if the soup has no faces, an index out of range, a non-finite coordinate, or a weld
-/// tolerance below the precision of the coordinates.
+/// Throws InputError if the soup has no faces, an index out of range, a non-finite coordinate, a weld
+/// tolerance below the precision of the coordinates, or options.component numbers a component the mesh
+/// does not have (the message gives how many it has).
 PreparedMesh prepare_mesh(const PolygonSoup& soup, const PrepareOptions& options = {});
 
 /// Same checks for an already triangulated mesh (attributes are carried along).
