@@ -1,6 +1,7 @@
 // The command line as a user runs it: exit codes, files written (or not), byte-identical reruns.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <tuple>
@@ -478,6 +479,45 @@ TEST_F(Cli, AnEarlierRunsFolderIsRefusedOrReplacedWithForce) {
   EXPECT_FALSE(fs::exists(out / "index.html"));
   EXPECT_EQ(slurp(out / "notes.txt"), "mine");
   for (const char* name : {"surface.ply", "sphere.ply"}) EXPECT_TRUE(fs::exists(out / name)) << name;
+}
+
+// --components all --force over an earlier run of more components (and of a single map): the earlier
+// component-K/ folders beyond the new count and the earlier top-level outputs are gone, the new components
+// are there and complete; when the new run fails, the earlier outputs stay as they were.
+TEST_F(Cli, ComponentsAllWithForceReplacesAnEarlierRunOfMoreComponents) {
+  const fs::path input = folder_ / "two.pdb";
+  std::ofstream(input) << "ATOM      1  CA  ALA A   1       1.000   2.000   3.000  1.00  0.00           C\n"
+                          "ATOM      2  CB  ALA A   1       2.000   2.500   3.000  1.00  0.00           C\n"
+                          "HETATM    3 ZN    ZN A 101      21.000   2.000   3.000  1.00  0.00          ZN\nEND\n";
+  const fs::path out = folder_ / "out";
+  for (int k = 0; k < 5; ++k) {
+    fs::create_directories(out / ("component-" + std::to_string(k)));
+    write_text(out / ("component-" + std::to_string(k)) / "report.json", "{\"earlier\": true}");
+  }
+  write_text(out / "surface.ply", "earlier");
+  write_text(out / "notes.txt", "mine");
+  const auto failed = run_cli("map " + (folder_ / "missing.pdb").string() + " -o " + out.string() +
+                              " --components all --force -q --no-pictures");
+  EXPECT_EQ(failed.exit_code, 1) << failed.output;
+  for (int k = 0; k < 5; ++k)
+    EXPECT_EQ(slurp(out / ("component-" + std::to_string(k)) / "report.json"), "{\"earlier\": true}") << k;
+  EXPECT_EQ(slurp(out / "surface.ply"), "earlier");
+
+  const auto forced =
+      run_cli("map " + input.string() + " -o " + out.string() + " --components all --force -q --no-pictures");
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  for (int k = 0; k < 2; ++k) {
+    const auto report = nlohmann::json::parse(slurp(out / ("component-" + std::to_string(k)) / "report.json"));
+    EXPECT_EQ(report["structure"]["component_mapped"], k);
+    EXPECT_TRUE(fs::exists(out / ("component-" + std::to_string(k)) / "sphere.ply")) << k;
+  }
+  for (int k = 2; k < 5; ++k) EXPECT_FALSE(fs::exists(out / ("component-" + std::to_string(k)))) << k;
+  EXPECT_FALSE(fs::exists(out / "surface.ply"));
+  EXPECT_EQ(slurp(out / "notes.txt"), "mine");
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(out)) left.push_back(entry.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"component-0", "component-1", "notes.txt"}));
 }
 
 // The reader's warnings reach stderr, report.json and the batch summary's message column.
