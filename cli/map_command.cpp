@@ -64,8 +64,8 @@ int map_every_component(const MapCommand& s) {
       write_map_outputs(folder, result, s.map.job);
       if (!s.no_pictures) write_pictures(folder, result);
     }
-  } catch (const Error&) {
-    remove_map_outputs(s.output);  // no partial output: the components written so far go too
+  } catch (...) {
+    remove_map_outputs(s.output);  // no partial output: the components written so far go too, whatever the error
     throw;
   }
   int code = 0;
