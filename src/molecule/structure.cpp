@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -235,13 +236,21 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path, const std::stri
       if (std::from_chars(text.data(), text.data() + text.size(), value).ec != std::errc{}) throw fail();
       return value;
     };
+    // Serial and residue numbers: whole numbers of 32 bits (a cast of a larger double is undefined).
+    auto whole_number = [&](const std::string& text) {
+      const double value = number(text);
+      if (!(value >= std::numeric_limits<std::int32_t>::min() && value <= std::numeric_limits<std::int32_t>::max()) ||
+          value != std::trunc(value))
+        throw fail();
+      return static_cast<std::int32_t>(value);
+    };
     const auto n = fields.size();
     RawAtom raw;
     raw.atom.position = {number(fields[n - 5]), number(fields[n - 4]), number(fields[n - 3])};
     raw.atom.charge = number(fields[n - 2]);
     raw.atom.radius = number(fields[n - 1]);
     if (!std::isfinite(*raw.atom.charge) || !(raw.atom.radius >= 0 && raw.atom.radius < 10)) throw fail();
-    raw.atom.serial = static_cast<std::int32_t>(number(fields[1]));
+    raw.atom.serial = whole_number(fields[1]);
     raw.atom.name = fields[2];
     raw.atom.residue_name = fields[3];
     std::string residue_number = fields[n - 6];
@@ -250,7 +259,7 @@ std::vector<RawAtom> read_pqr(const std::filesystem::path& path, const std::stri
       raw.atom.insertion_code = residue_number.back();
       residue_number.pop_back();
     }
-    raw.atom.residue_number = static_cast<std::int32_t>(number(residue_number));
+    raw.atom.residue_number = whole_number(residue_number);
     raw.atom.hetero = fields[0] == "HETATM";
     // PQR has no element column: ions are named after their element (residue FE, atom FE), other atoms
     // start with their element letter after any digits (1HG1 is a hydrogen).
