@@ -21,7 +21,10 @@ rm -rf "$out"
 mkdir -p "$out/meshes"
 # The maps only: a batch draws pictures too since they became its default (binaries from before have no
 # --no-pictures, and drew none).
-no_pictures=$("$bin" batch --help 2>/dev/null | grep -q -- --no-pictures && echo --no-pictures)
+# (The help is read whole first: `grep -q` in a pipe under pipefail can fail on the writer's SIGPIPE.)
+batch_help=$("$bin" batch --help 2>/dev/null || true)
+no_pictures=""
+[[ "$batch_help" == *--no-pictures* ]] && no_pictures=--no-pictures
 "$bin" batch "$data/pdb/paper77" "$data/pdb/misc" -o "$out/structures" --grid 1.0 --jobs 2 -q $no_pictures
 echo "batch exit $?"
 for f in "$data"/meshes/*.obj "$data"/meshes/*.off "$data"/meshes/*.ply; do
