@@ -10,6 +10,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -131,6 +132,31 @@ std::vector<RawAtom> read_atom_site_table(const std::filesystem::path& path, gem
   return atoms;
 }
 
+// Whether the line at `at` starts with `record`'s first four letters, in either case: how gemmi's PDB reader
+// tells record types apart.
+bool starts_record(const std::string& text, std::size_t at, std::string_view record) {
+  if (text.size() - at < 4) return false;
+  for (std::size_t i = 0; i < 4; ++i)
+    if ((static_cast<unsigned char>(text[at + i]) & ~0x20u) != static_cast<unsigned char>(record[i])) return false;
+  return true;
+}
+
+// `text` as gemmi's PDB reader may safely see it. gemmi 0.5 reads a short or mangled connection record
+// (SSBOND, LINK, CISPEP) at fixed columns past its end (a heap over-read found by fuzzing: FUZZING.md,
+// finding 4); spheremap uses none of them, so they are renamed to a record gemmi ignores. NUL bytes become
+// spaces first: gemmi ends a line at one and starts the next after it, so a record could begin mid-line.
+std::string gemmi_safe_pdb_text(const std::string& text) {
+  std::string out = text;
+  std::replace(out.begin(), out.end(), '\0', ' ');
+  for (std::size_t at = 0; at < out.size();) {
+    if (starts_record(out, at, "SSBO") || starts_record(out, at, "LINK") || starts_record(out, at, "CISP"))
+      std::copy_n("SKIP", 4, out.begin() + static_cast<std::ptrdiff_t>(at));
+    const std::size_t end = out.find('\n', at);
+    at = end == std::string::npos ? out.size() : end + 1;
+  }
+  return out;
+}
+
 // The structure in `text` (the file's bytes, inflated), as PDB or mmCIF by the file's extension; the
 // document too for mmCIF (read_atom_site_table reads it again when gemmi finds no model).
 gemmi::Structure parse_with_gemmi(const std::filesystem::path& path, const std::string& text,
@@ -146,17 +172,20 @@ std::vector<RawAtom> read_with_gemmi(const std::filesystem::path& path, const st
                                      std::int64_t& models_in_file, std::vector<std::string>& warnings) {
   gemmi::Structure structure;
   std::optional<gemmi::cif::Document> document;
+  const bool pdb = lower_extension(path) == ".pdb" || lower_extension(path) == ".ent";
+  const std::string pdb_text = pdb ? gemmi_safe_pdb_text(text) : std::string();
+  const std::string& input = pdb ? pdb_text : text;
   try {
-    structure = parse_with_gemmi(path, text, document);
+    structure = parse_with_gemmi(path, input, document);
   } catch (const std::exception& first_error) {
     // Old PDB files carry an ID and line numbers in columns 73-80, where the element and charge are now
     // (1hpv.pdb of pymol-data, for one): read them again up to column 72, elements then come from names.
     bool read = false;
-    if (lower_extension(path) == ".pdb" || lower_extension(path) == ".ent") {
+    if (pdb) {
       try {
         gemmi::PdbReadOptions up_to_72;
         up_to_72.max_line_length = 72;
-        structure = gemmi::read_pdb_from_memory(text.data(), text.size(), path.string(), up_to_72);
+        structure = gemmi::read_pdb_from_memory(input.data(), input.size(), path.string(), up_to_72);
         warnings.push_back(fmt::format("columns 73-80 ignored (old-style PDB: {}); elements taken from atom names",
                                        first_error.what()));
         read = true;
