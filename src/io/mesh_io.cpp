@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "../util/read_all.hpp"
 #include "readers.hpp"
 #include "spheremap/error.hpp"
 
@@ -82,21 +83,8 @@ std::string read_whole_file(const std::filesystem::path& path, const std::string
     fail(file, fmt::format("the file cannot be opened ({})", std::strerror(errno)),
          "check that it is readable (permissions)");
   }
-  // Read in chunks instead of trusting the file size (special files report size 0), the first one the size
-  // reported and a byte more, so that a small file costs no megabyte of buffer.
-  std::string bytes;
-  constexpr std::size_t kChunk = std::size_t{1} << 20;
   const auto size_hint = std::filesystem::file_size(path, ec);
-  std::size_t request = ec ? kChunk : static_cast<std::size_t>(size_hint) + 1;
-  std::size_t used = 0;
-  for (;;) {
-    bytes.resize(used + request);
-    const std::size_t got = std::fread(bytes.data() + used, 1, request, stream.get());
-    used += got;
-    if (got < request) break;
-    request = kChunk;
-  }
-  bytes.resize(used);
+  std::string bytes = detail::read_all(stream.get(), ec ? 0 : static_cast<std::size_t>(size_hint));
   if (std::ferror(stream.get())) {
     fail(file, fmt::format("the file cannot be read ({})", std::strerror(errno)), "check the disk and the file");
   }

@@ -1,6 +1,7 @@
 // read_structure_text: a structure file read whole and checked for truncation; .gz inflated by zlib,
 // whose gzip wrapper verifies each member's CRC-32 and length.
 #include "structure_text.hpp"
+#include "../util/read_all.hpp"
 
 #include <zlib.h>
 
@@ -39,21 +40,9 @@ std::string read_bytes(const std::filesystem::path& path) {
   if (!stream)
     throw InputError(
         fmt::format("{}: cannot open the file ({}); check that it is readable", path.string(), std::strerror(errno)));
-  // In chunks (special files report size 0), the first one the size reported and a byte more.
-  std::string bytes;
-  constexpr std::size_t kChunk = std::size_t{1} << 20;
   std::error_code ec;
   const auto size_hint = std::filesystem::file_size(path, ec);
-  std::size_t request = ec ? kChunk : static_cast<std::size_t>(size_hint) + 1;
-  std::size_t used = 0;
-  for (;;) {
-    bytes.resize(used + request);
-    const std::size_t got = std::fread(bytes.data() + used, 1, request, stream.get());
-    used += got;
-    if (got < request) break;
-    request = kChunk;
-  }
-  bytes.resize(used);
+  std::string bytes = detail::read_all(stream.get(), ec ? 0 : static_cast<std::size_t>(size_hint));
   if (std::ferror(stream.get()))
     throw InputError(
         fmt::format("{}: cannot read the file ({}); check the disk and the file", path.string(), std::strerror(errno)));
