@@ -36,8 +36,9 @@ const spheremap::Mesh& perturbed_cube(int n) {
   auto it = cache.find(n);
   if (it == cache.end())
     it = cache
-             .emplace(n, spheremap::prepare_mesh(spheremap::perturb_vertices(spheremap::make_subdivided_cube(n), 0.05, 1))
-                             .mesh)
+             .emplace(
+                 n,
+                 spheremap::prepare_mesh(spheremap::perturb_vertices(spheremap::make_subdivided_cube(n), 0.05, 1)).mesh)
              .first;
   return it->second;
 }
@@ -58,7 +59,8 @@ double peak_rss_megabytes() {
 }
 
 void run(benchmark::State& state, spheremap::Solver solver, bool perturbed = false) {
-  const auto& mesh = perturbed ? perturbed_cube(static_cast<int>(state.range(0))) : cube(static_cast<int>(state.range(0)));
+  const auto& mesh =
+      perturbed ? perturbed_cube(static_cast<int>(state.range(0))) : cube(static_cast<int>(state.range(0)));
   spheremap::MapOptions options;
   options.solver = solver;
   bool certified = true, converged = true;

@@ -24,7 +24,7 @@ namespace {
 // A .gz is refused as soon as what it inflates to passes either limit (docs/robustness.md), so that a
 // gzip bomb (a small file of ~1000:1 that inflates to gigabytes) costs at most this much memory. Structure
 // files compress 4-10:1; the largest entries of the PDB are a few hundred MB uncompressed.
-constexpr std::size_t kMaxInflated = std::size_t{1} << 30;      // 1 GiB
+constexpr std::size_t kMaxInflated = std::size_t{1} << 30;        // 1 GiB
 constexpr std::size_t kRatioCheckedFrom = std::size_t{64} << 20;  // 64 MiB
 constexpr std::size_t kMaxRatio = 100;
 
@@ -61,12 +61,14 @@ void check_inflated_size(const std::filesystem::path& path, std::size_t inflated
   if (!too_large && !too_compressed) return;
   const std::string problem =
       too_large ? fmt::format("it inflates to more than {} MiB (the limit for a .gz file)", kMaxInflated >> 20)
-                : fmt::format("it inflates to more than {} times its compressed size ({} MiB from {} bytes so far; the "
-                              "limit for a .gz file beyond {} MiB is {}:1, and structure files compress about 4-10:1)",
-                              kMaxRatio, inflated >> 20, consumed, kRatioCheckedFrom >> 20, kMaxRatio);
-  throw InputError(fmt::format("{}: {}, so inflating it stopped there (a gzip bomb?); if it really is a structure, "
-                               "decompress it (gunzip -k) and map the uncompressed file, which has no such limit",
-                               path.string(), problem));
+                : fmt::format(
+                      "it inflates to more than {} times its compressed size ({} MiB from {} bytes so far; the "
+                      "limit for a .gz file beyond {} MiB is {}:1, and structure files compress about 4-10:1)",
+                      kMaxRatio, inflated >> 20, consumed, kRatioCheckedFrom >> 20, kMaxRatio);
+  throw InputError(
+      fmt::format("{}: {}, so inflating it stopped there (a gzip bomb?); if it really is a structure, "
+                  "decompress it (gunzip -k) and map the uncompressed file, which has no such limit",
+                  path.string(), problem));
 }
 
 // Inflates every gzip member of `compressed`. Bytes after the last member that do not start another

@@ -144,9 +144,9 @@ std::vector<std::int32_t>::iterator widest_gap_split(std::vector<std::int32_t>& 
 }
 
 // Order of the unknowns for a sparse Cholesky factorization: split the vertices near the median of their
-// longest bounding-box axis (widest_gap_split), take the vertices of one half that touch the other half as the separator,
-// order both halves recursively and the separator last. On surface meshes the separators are curves
-// of O(√n) vertices, which gives nested dissection's O(n^1.5) work instead of minimum degree's.
+// longest bounding-box axis (widest_gap_split), take the vertices of one half that touch the other half as the
+// separator, order both halves recursively and the separator last. On surface meshes the separators are curves of O(√n)
+// vertices, which gives nested dissection's O(n^1.5) work instead of minimum degree's.
 std::vector<std::int32_t> nested_dissection_order(const Eigen::SparseMatrix<double>& matrix,
                                                   const std::vector<Vec3>& positions) {
   const auto n = static_cast<std::int32_t>(matrix.rows());

@@ -46,7 +46,8 @@ std::vector<Case> cases() {
   list.push_back({"cube", prepare_mesh(perturb_vertices(make_subdivided_cube(20), 0.2, 3)).mesh, uniform});
   MapOptions mean_value;
   mean_value.weights = Weights::kMeanValue;
-  list.push_back({"icosphere", prepare_mesh(random_edge_flips(perturb_vertices(make_icosphere(4), 0.3, 7), 0.1, 11)).mesh,
+  list.push_back({"icosphere",
+                  prepare_mesh(random_edge_flips(perturb_vertices(make_icosphere(4), 0.3, 7), 0.1, 11)).mesh,
                   mean_value});
   MapOptions balanced;
   balanced.objective = MapObjective::kBalanced;

@@ -189,8 +189,7 @@ TEST(Prepare, RefusesPinchedVertexAndSeveralComponents) {
     prepare_mesh(two, missing);
     ADD_FAILURE() << "--component 2 of 2 components accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--component 2 does not exist: the mesh has 2 components"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("--component 2 does not exist: the mesh has 2 components"), std::string::npos)
         << e.what();
   }
   missing.component = ComponentChoice::numbered(1);

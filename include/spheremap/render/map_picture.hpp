@@ -78,8 +78,7 @@ std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, co
 /// The same from samples taken once for every property: `grid` from sample_grid (4 x 4 samples a cell), on
 /// `threads` threads (0: all; the text does not depend on it). Throws std::invalid_argument if `grid` is not
 /// of that shape.
-std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid,
-                         int threads = 0);
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid, int threads = 0);
 
 /// The samples of a columns x rows grid for map_grid_tsv (sample_map at 4 x 4 points a cell).
 /// Throws std::invalid_argument if a side is not positive.
