@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -67,12 +68,20 @@ struct PanelRect {
   std::string label;
 };
 
-// One panel: the mesh (positions around `centre`, scaled by `scale` pixels per unit) seen through `view`,
-// shaded, as ARGB pixels (transparent background).
-std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfaceProperty& property, const ValueRange& range,
-                                        const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
-                                        const Vec3& centre, const View& view, double scale, int width, int height,
-                                        int supersampling, int threads) {
+// What one figure colours its panels by.
+struct Colouring {
+  const SurfaceProperty* property;
+  ValueRange range;
+};
+
+// One panel of each figure: the mesh (positions around `centre`, scaled by `scale` pixels per unit) seen through
+// `view`, rasterized once and shaded once per colouring (the geometry of a sample does not depend on the
+// property), as ARGB pixels (transparent background), one image per colouring.
+std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const std::vector<Colouring>& colourings,
+                                                     const std::vector<Vec3>& positions,
+                                                     const std::vector<Vec3>& normals, const Vec3& centre,
+                                                     const View& view, double scale, int width, int height,
+                                                     int supersampling, int threads) {
   const int ss = supersampling;
   const int sw = width * ss, sh = height * ss;
   std::vector<Vec3> screen;
@@ -89,11 +98,15 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
   std::vector<double> light(positions.size());
   for (std::size_t v = 0; v < positions.size(); ++v)
     light[v] = kAmbient + kDiffuse * std::max(0.0, dot(view(normals[v]), light_direction));
-  std::vector<std::uint32_t> pixels(static_cast<std::size_t>(width) * height, 0);
+  const std::size_t figures = colourings.size();
+  std::vector<std::vector<std::uint32_t>> pixels(figures,
+                                                 std::vector<std::uint32_t>(static_cast<std::size_t>(width) * height));
   detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
+    std::vector<std::array<double, 3>> sums(figures);  // r, g, b of each figure's pixel
     for (auto y = static_cast<int>(first); y < last; ++y)
       for (int x = 0; x < width; ++x) {
-        double r = 0, g = 0, b = 0, covered = 0;
+        std::fill(sums.begin(), sums.end(), std::array<double, 3>{0, 0, 0});
+        double covered = 0;
         for (int sy = y * ss; sy < (y + 1) * ss; ++sy)
           for (int sx = x * ss; sx < (x + 1) * ss; ++sx) {
             const std::int32_t t = buffer.triangle[static_cast<std::size_t>(sy) * sw + sx];
@@ -104,11 +117,15 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
             for (double& wk : w) wk = std::max(wk, 0.0);
             const double total = w[0] + w[1] + w[2];
             for (double& wk : w) wk = total > 0 ? wk / total : 1.0 / 3;
-            const double value = value_at(
-                globe, property, t, {static_cast<float>(w[0]), static_cast<float>(w[1]), static_cast<float>(w[2])});
-            const Rgb8 colour = colour_of(property.info.scale, range, value);
+            const std::array<float, 3> weights{static_cast<float>(w[0]), static_cast<float>(w[1]),
+                                               static_cast<float>(w[2])};
             const double shade = w[0] * light[tri[0]] + w[1] * light[tri[1]] + w[2] * light[tri[2]];
-            r += colour.r * shade, g += colour.g * shade, b += colour.b * shade, covered += 1;
+            for (std::size_t f = 0; f < figures; ++f) {
+              const Colouring& c = colourings[f];
+              const Rgb8 colour = colour_of(c.property->info.scale, c.range, value_at(globe, *c.property, t, weights));
+              sums[f][0] += colour.r * shade, sums[f][1] += colour.g * shade, sums[f][2] += colour.b * shade;
+            }
+            covered += 1;
           }
         if (covered == 0) continue;
         // Premultiplied ARGB: coverage is the alpha, so edges blend with the white page.
@@ -117,7 +134,9 @@ std::vector<std::uint32_t> render_panel(const Globe& globe, const SurfacePropert
           return static_cast<std::uint32_t>(std::lround(std::clamp(v / samples, 0.0, 255.0)));
         };
         const auto alpha = static_cast<std::uint32_t>(std::lround(covered / samples * 255));
-        pixels[static_cast<std::size_t>(y) * width + x] = (alpha << 24) | (byte(r) << 16) | (byte(g) << 8) | byte(b);
+        for (std::size_t f = 0; f < figures; ++f)
+          pixels[f][static_cast<std::size_t>(y) * width + x] =
+              (alpha << 24) | (byte(sums[f][0]) << 16) | (byte(sums[f][1]) << 8) | byte(sums[f][2]);
       }
   });
   return pixels;
@@ -194,13 +213,18 @@ HemisphereViews hemisphere_views(const std::vector<Vec3>& surface) {
   return views;
 }
 
-std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& property, const HemisphereOptions& options) {
+std::vector<std::string> hemisphere_figures(const Globe& globe, const std::vector<const SurfaceProperty*>& properties,
+                                            const HemisphereOptions& options) {
   if (options.width < 400 || options.height < 400 || options.width > 16384 || options.height > 16384)
     throw InputError(fmt::format("--size {}x{}: a hemisphere figure must be between 400x400 and 16384x16384 pixels",
                                  options.width, options.height));
   if (options.supersampling < 1 || options.supersampling > 8)
     throw InputError(fmt::format("supersampling {}: it must be 1 to 8", options.supersampling));
-  const ValueRange range = picture_range(property, options.range);
+  if (!options.trace.empty() && properties.size() > 1)
+    throw std::invalid_argument("hemisphere_figures: a trace's values belong to one property");
+  if (properties.empty()) return {};
+  std::vector<Colouring> colourings;
+  for (const SurfaceProperty* property : properties) colourings.push_back({property, picture_range(*property, options.range)});
   const HemisphereViews views = hemisphere_views(globe.surface);
   const View front = front_view(views), back = back_view(views);
 
@@ -236,8 +260,6 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
   const std::vector<Vec3> surface_normals = vertex_normals(globe.surface, globe.triangles);
   const Vec3 origin{0, 0, 0};
 
-  render_detail::Canvas canvas(options.format, options.width, options.height);
-  cairo_t* cr = canvas.cr();
   struct Job {
     const std::vector<Vec3>* positions;
     const std::vector<Vec3>* normals;
@@ -249,50 +271,66 @@ std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& propert
                                  {&globe.surface, &surface_normals, &views.centre, &back, surface_scale},
                                  {&globe.sphere, &globe.sphere, &origin, &front, globe_scale},
                                  {&globe.sphere, &globe.sphere, &origin, &back, globe_scale}}};
-  const std::string letters = with_trace ? "bcde" : "abcd";
-  // The four panels side by side (each on one thread: its rasterization is serial), then laid out in order.
-  std::array<std::vector<std::uint32_t>, 4> panel_pixels;
-  detail::parallel_chunks(4, detail::surface_threads(options.threads), [&](std::int64_t k, int) {
+  const int threads = detail::surface_threads(options.threads);
+  // The four panels side by side (each on one thread: its rasterization is serial), each shaded for every figure.
+  std::array<std::vector<std::vector<std::uint32_t>>, 4> panel_pixels;  // [panel][figure]
+  detail::parallel_chunks(4, threads, [&](std::int64_t k, int) {
     const Job& job = jobs[static_cast<std::size_t>(k)];
     panel_pixels[static_cast<std::size_t>(k)] =
-        render_panel(globe, property, range, *job.positions, *job.normals, *job.centre, *job.view, job.scale, side,
-                     side, options.supersampling, 1);
+        render_panel(globe, colourings, *job.positions, *job.normals, *job.centre, *job.view, job.scale, side, side,
+                     options.supersampling, 1);
   });
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    std::vector<std::uint32_t>& pixels = panel_pixels[k];
-    cairo_surface_t* image = render_detail::image_surface(pixels, side, side);
-    cairo_set_source_surface(cr, image, panels[k].x, panels[k].y);
-    cairo_paint(cr);
-    cairo_surface_destroy(image);
-    render_detail::set_font(cr, font_size, true);
-    render_detail::draw_text(cr, panels[k].x, panels[k].y - 0.45 * font_size, std::string(1, letters[k]), Align::left);
-    render_detail::set_font(cr, font_size);
-    render_detail::draw_text(cr, panels[k].x + 1.3 * font_size, panels[k].y - 0.45 * font_size, panels[k].label,
-                             Align::left, {60, 60, 60});
-  }
-  if (with_trace) {
-    const PanelRect trace_panel = panel_at(0, 0.5, "backbone, front");  // between the two rows
-    draw_trace(cr, options.trace, property, range, views.centre, front, surface_scale, trace_panel);
-    // The label just above the trace (which is smaller than its panel: the surface's scale), clear of its tubes.
-    const double label_y =
-        std::max(trace_panel.y, trace_top(options.trace, views.centre, front, surface_scale, trace_panel)) -
-        0.9 * font_size;
-    render_detail::set_font(cr, font_size, true);
-    render_detail::draw_text(cr, trace_panel.x, label_y, "a", Align::left);
-    render_detail::set_font(cr, font_size);
-    render_detail::draw_text(cr, trace_panel.x + 1.3 * font_size, label_y, trace_panel.label, Align::left,
-                             {60, 60, 60});
-  }
-  render_detail::set_font(cr, title_size, true);
-  render_detail::draw_text(cr, w / 2, margin + title_size,
-                           fmt::format("{} · {} · surface and globe", globe.name, property.info.name), Align::centre);
-  render_detail::set_font(cr, font_size * 0.9);
-  render_detail::draw_text(cr, w / 2, margin + 1.5 * title_size + 0.45 * font_size,
-                           "front: along the surface's axis of least spread; back: turned 180° about the vertical",
-                           Align::centre, {90, 90, 90});
-  render_detail::draw_colour_key(cr, render_detail::colour_key(property, range), margin, h - margin - key_height,
-                                 w - 2 * margin, key_height, font_size);
-  return canvas.finish();
+  // Then the figures side by side, each laid out (and encoded) on one thread.
+  const std::string letters = with_trace ? "bcde" : "abcd";
+  std::vector<std::string> figures(colourings.size());
+  detail::parallel_chunks(static_cast<std::int64_t>(colourings.size()), threads, [&](std::int64_t f, int) {
+    const SurfaceProperty& property = *colourings[static_cast<std::size_t>(f)].property;
+    const ValueRange& range = colourings[static_cast<std::size_t>(f)].range;
+    render_detail::Canvas canvas(options.format, options.width, options.height);
+    cairo_t* cr = canvas.cr();
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      std::vector<std::uint32_t>& pixels = panel_pixels[k][static_cast<std::size_t>(f)];
+      cairo_surface_t* image = render_detail::image_surface(pixels, side, side);
+      cairo_set_source_surface(cr, image, panels[k].x, panels[k].y);
+      cairo_paint(cr);
+      cairo_surface_destroy(image);
+      render_detail::set_font(cr, font_size, true);
+      render_detail::draw_text(cr, panels[k].x, panels[k].y - 0.45 * font_size, std::string(1, letters[k]),
+                               Align::left);
+      render_detail::set_font(cr, font_size);
+      render_detail::draw_text(cr, panels[k].x + 1.3 * font_size, panels[k].y - 0.45 * font_size, panels[k].label,
+                               Align::left, {60, 60, 60});
+    }
+    if (with_trace) {
+      const PanelRect trace_panel = panel_at(0, 0.5, "backbone, front");  // between the two rows
+      draw_trace(cr, options.trace, property, range, views.centre, front, surface_scale, trace_panel);
+      // The label just above the trace (which is smaller than its panel: the surface's scale), clear of its tubes.
+      const double label_y =
+          std::max(trace_panel.y, trace_top(options.trace, views.centre, front, surface_scale, trace_panel)) -
+          0.9 * font_size;
+      render_detail::set_font(cr, font_size, true);
+      render_detail::draw_text(cr, trace_panel.x, label_y, "a", Align::left);
+      render_detail::set_font(cr, font_size);
+      render_detail::draw_text(cr, trace_panel.x + 1.3 * font_size, label_y, trace_panel.label, Align::left,
+                               {60, 60, 60});
+    }
+    render_detail::set_font(cr, title_size, true);
+    render_detail::draw_text(cr, w / 2, margin + title_size,
+                             fmt::format("{} · {} · surface and globe", globe.name, property.info.name),
+                             Align::centre);
+    render_detail::set_font(cr, font_size * 0.9);
+    render_detail::draw_text(cr, w / 2, margin + 1.5 * title_size + 0.45 * font_size,
+                             "front: along the surface's axis of least spread; back: turned 180° about the vertical",
+                             Align::centre, {90, 90, 90});
+    render_detail::draw_colour_key(cr, render_detail::colour_key(property, range), margin, h - margin - key_height,
+                                   w - 2 * margin, key_height, font_size);
+    figures[static_cast<std::size_t>(f)] = canvas.finish();
+  });
+  return figures;
+}
+
+std::string hemisphere_figure(const Globe& globe, const SurfaceProperty& property, const HemisphereOptions& options) {
+  return hemisphere_figures(globe, {&property}, options).front();
 }
 
 }  // namespace spheremap

@@ -42,39 +42,61 @@ std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::pat
   // One sampling serves every property's map.
   const MapSamples samples = sample_map(locator, Projection::mollweide, size[0], size[1], threads);
   const MapSamples grid = sample_grid(locator, Projection::mollweide, 360, 180, threads);
-  // The files, in the order they are returned: each drawn on its own (one picture per thread; each picture's
-  // bytes do not depend on which thread draws it), then written in order.
+  // The files, in the order they are returned: each drawn on its own (each picture's bytes do not depend on which
+  // thread draws it), then written in order.
   std::vector<std::filesystem::path> paths;
-  std::vector<std::function<std::string()>> draw;
+  std::vector<std::function<std::string()>> draw;  // empty: drawn already
+  std::vector<std::string> bytes;                  // of each file, when drawn
   const auto& drawn = default_map_properties();
+  std::vector<const SurfaceProperty*> mapped;
+  std::vector<std::size_t> grid_files;  // where each mapped property's grid is in `paths`
   for (const SurfaceProperty& property : globe.properties) {
     if (std::find(drawn.begin(), drawn.end(), property.info.name) == drawn.end()) continue;
     const std::string stem = property.info.name + "-mollweide";
     paths.push_back(pictures / (stem + ".png"));
     draw.emplace_back([&] { return map_figure(globe, property, samples, options); });
+    grid_files.push_back(paths.size());
     paths.push_back(pictures / (stem + ".tsv"));
-    draw.emplace_back([&] { return map_grid_tsv(globe, property, grid, 1); });
+    draw.emplace_back();  // the grids are made together (below)
+    mapped.push_back(&property);
   }
-  HemisphereOptions hemispheres;
-  hemispheres.threads = 1;  // the figures themselves run side by side
-  std::vector<std::string> hemisphere_properties{"octant"};
+  // The hemisphere figures share their rasterization: drawn together first, on every thread.
+  std::vector<const SurfaceProperty*> hemisphere_properties{find_globe_property(globe, "octant")};
   if (const std::string featured = featured_property(globe); !featured.empty())
-    hemisphere_properties.push_back(featured);
-  for (const std::string& name : hemisphere_properties)
-    if (const SurfaceProperty* property = find_globe_property(globe, name)) {
-      paths.push_back(pictures / (name + "-hemispheres.png"));
-      draw.emplace_back([&globe, property, hemispheres] { return hemisphere_figure(globe, *property, hemispheres); });
-    }
+    hemisphere_properties.push_back(find_globe_property(globe, featured));
+  std::erase(hemisphere_properties, nullptr);
+  HemisphereOptions hemispheres;
+  hemispheres.threads = threads;
+  std::vector<std::string> figures = hemisphere_figures(globe, hemisphere_properties, hemispheres);
+  bytes.resize(draw.size());
+  for (std::size_t f = 0; f < figures.size(); ++f) {
+    paths.push_back(pictures / (hemisphere_properties[f]->info.name + "-hemispheres.png"));
+    draw.emplace_back();
+    bytes.push_back(std::move(figures[f]));
+  }
   paths.push_back(folder / kViewerFile);
   draw.emplace_back([&] { return viewer_html(viewer); });
-  std::vector<std::string> bytes(draw.size());
-  // The slowest first (the hemisphere figures and the viewer are last in the list), so that the threads end
-  // together.
-  detail::parallel_chunks(static_cast<std::int64_t>(draw.size()), detail::surface_threads(threads),
+  bytes.emplace_back();
+  // The slowest first, so that the threads end together: the viewer, then the maps.
+  std::vector<std::size_t> order;
+  const auto queue = [&](const auto& wanted) {
+    for (std::size_t i = 0; i < draw.size(); ++i)
+      if (draw[i] && wanted(paths[i])) order.push_back(i);
+  };
+  queue([](const std::filesystem::path& path) { return path.extension() == ".html"; });
+  queue([](const std::filesystem::path& path) { return path.extension() == ".png"; });
+  // The grids share each cell's position and residues: one task for all of them, last (the shortest).
+  std::vector<std::string> grids;
+  detail::parallel_chunks(static_cast<std::int64_t>(order.size()) + 1, detail::surface_threads(threads),
                           [&](std::int64_t k, int) {
-                            const std::size_t i = draw.size() - 1 - static_cast<std::size_t>(k);
+                            if (k == static_cast<std::int64_t>(order.size())) {
+                              grids = map_grid_tsvs(globe, mapped, grid, 1);
+                              return;
+                            }
+                            const std::size_t i = order[static_cast<std::size_t>(k)];
                             bytes[i] = draw[i]();
                           });
+  for (std::size_t m = 0; m < mapped.size(); ++m) bytes[grid_files[m]] = std::move(grids[m]);
   for (std::size_t i = 0; i < paths.size(); ++i) {
     write_file_atomically(paths[i], bytes[i]);
     bytes[i] = std::string();
