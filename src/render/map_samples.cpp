@@ -81,17 +81,31 @@ namespace {
 
 constexpr int kGridSubsamples = 4;  // per cell side
 
-struct CellSummary {
-  double value = kNaN;
-  // The residues under the cell's points (indices into globe.residues), ascending, each once.
-  std::array<std::int32_t, kGridSubsamples * kGridSubsamples> residues{};
-  int residue_count = 0;
-};
+using CellResidues = std::array<std::int32_t, kGridSubsamples * kGridSubsamples>;
 
-// The cell's kGridSubsamples² points are the pixels of the fine samples it covers.
-CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, const MapSamples& fine, int row,
-                           int column) {
-  CellSummary cell;
+// The residues under the cell's points (the pixels of the fine samples it covers; indices into globe.residues),
+// ascending, each once: how many.
+int cell_residues(const Globe& globe, const MapSamples& fine, int row, int column, CellResidues& residues) {
+  int count = 0;
+  if (globe.vertex_residue.empty()) return 0;
+  for (int sy = 0; sy < kGridSubsamples; ++sy)
+    for (int sx = 0; sx < kGridSubsamples; ++sx) {
+      const std::size_t i = static_cast<std::size_t>(row * kGridSubsamples + sy) * fine.width +
+                            static_cast<std::size_t>(column * kGridSubsamples + sx);
+      const std::int32_t triangle = fine.triangle[i];
+      if (triangle < 0) continue;
+      const auto& w = fine.weights[i];
+      const int nearest = w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
+      const std::int32_t vertex = globe.triangles[triangle][nearest];
+      if (globe.vertex_residue[vertex] >= 0) residues[count++] = globe.vertex_residue[vertex];
+    }
+  std::sort(residues.begin(), residues.begin() + count);
+  return static_cast<int>(std::unique(residues.begin(), residues.begin() + count) - residues.begin());
+}
+
+// The cell's value: the mean of the property at its points (categorical: the most frequent class, the smallest of
+// equals); NaN if none has a value.
+double cell_value(const Globe& globe, const SurfaceProperty& property, const MapSamples& fine, int row, int column) {
   double sum = 0;
   int count = 0;
   const bool categorical = property.info.scale == ScaleKind::categorical;
@@ -103,33 +117,25 @@ CellSummary summarize_cell(const Globe& globe, const SurfaceProperty& property, 
                             static_cast<std::size_t>(column * kGridSubsamples + sx);
       const std::int32_t triangle = fine.triangle[i];
       if (triangle < 0) continue;
-      const auto& w = fine.weights[i];
-      const int nearest = w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
-      const std::int32_t vertex = globe.triangles[triangle][nearest];
-      if (!globe.vertex_residue.empty() && globe.vertex_residue[vertex] >= 0)
-        cell.residues[cell.residue_count++] = globe.vertex_residue[vertex];
-      const double v = value_at(globe, property, triangle, w);
+      const double v = value_at(globe, property, triangle, fine.weights[i]);
       if (std::isnan(v)) continue;
       if (categorical) classes[class_count++] = v;
       sum += v, ++count;
     }
-  std::sort(cell.residues.begin(), cell.residues.begin() + cell.residue_count);
-  cell.residue_count = static_cast<int>(std::unique(cell.residues.begin(), cell.residues.begin() + cell.residue_count) -
-                                        cell.residues.begin());
+  double value = kNaN;
   if (categorical) {
-    // The most frequent class, the smallest of equals.
     std::sort(classes.begin(), classes.begin() + class_count);
     int best = 0;
     for (int k = 0; k < class_count;) {
       int n = 1;
       while (k + n < class_count && classes[k + n] == classes[k]) ++n;
-      if (n > best) best = n, cell.value = classes[k];
+      if (n > best) best = n, value = classes[k];
       k += n;
     }
   } else if (count > 0) {
-    cell.value = sum / count;
+    value = sum / count;
   }
-  return cell;
+  return value;
 }
 
 }  // namespace
@@ -139,7 +145,8 @@ MapSamples sample_grid(const SphereLocator& locator, Projection projection, int 
   return sample_map(locator, projection, columns * kGridSubsamples, rows * kGridSubsamples, threads);
 }
 
-std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid, int threads) {
+std::vector<std::string> map_grid_tsvs(const Globe& globe, const std::vector<const SurfaceProperty*>& properties,
+                                       const MapSamples& grid, int threads) {
   if (grid.width % kGridSubsamples != 0 || grid.height % kGridSubsamples != 0 || grid.width == 0)
     throw std::invalid_argument("map_grid_tsv: the samples are not those of sample_grid");
   const int columns = grid.width / kGridSubsamples, rows = grid.height / kGridSubsamples;
@@ -147,31 +154,56 @@ std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, co
   std::vector<std::string> ids;  // residue_id of each residue, once
   ids.reserve(globe.residues.size());
   for (const ResidueLabel& residue : globe.residues) ids.push_back(residue_id(residue));
-  std::vector<std::string> lines(static_cast<std::size_t>(rows));
+  const std::size_t tables = properties.size();
+  std::vector<std::vector<std::string>> lines(tables, std::vector<std::string>(static_cast<std::size_t>(rows)));
+  // A cell's position and residues are the same in every table: formatted once, the values once per table.
   detail::parallel_ranges(rows, 4, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
+    std::vector<fmt::memory_buffer> out(tables);
+    fmt::memory_buffer position, residues;
     for (auto row = static_cast<int>(first); row < last; ++row) {
-      fmt::memory_buffer out;
       for (int column = 0; column < columns; ++column) {
         const auto centre = unproject(grid.projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
         if (!centre) continue;
-        const CellSummary cell = summarize_cell(globe, property, grid, row, column);
-        fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}\t{}\t{:.3f}\t{:.3f}\t"), row, column,
+        position.clear();
+        fmt::format_to(std::back_inserter(position), FMT_COMPILE("{}\t{}\t{:.3f}\t{:.3f}\t"), row, column,
                        centre->latitude / kDegree, centre->longitude / kDegree);
-        if (!std::isnan(cell.value)) fmt::format_to(std::back_inserter(out), FMT_COMPILE("{:.6g}"), cell.value);
-        out.push_back('\t');
-        for (int k = 0; k < cell.residue_count; ++k) {
-          if (k > 0) out.push_back(',');
-          const std::string& id = ids[static_cast<std::size_t>(cell.residues[k])];
-          out.append(id.data(), id.data() + id.size());
+        CellResidues under{};
+        const int count = cell_residues(globe, grid, row, column, under);
+        residues.clear();
+        residues.push_back('\t');
+        for (int k = 0; k < count; ++k) {
+          if (k > 0) residues.push_back(',');
+          const std::string& id = ids[static_cast<std::size_t>(under[k])];
+          residues.append(id.data(), id.data() + id.size());
         }
-        out.push_back('\n');
+        residues.push_back('\n');
+        for (std::size_t t = 0; t < tables; ++t) {
+          out[t].append(position.data(), position.data() + position.size());
+          const double value = cell_value(globe, *properties[t], grid, row, column);
+          if (!std::isnan(value)) fmt::format_to(std::back_inserter(out[t]), FMT_COMPILE("{:.6g}"), value);
+          out[t].append(residues.data(), residues.data() + residues.size());
+        }
       }
-      lines[row] = fmt::to_string(out);
+      for (std::size_t t = 0; t < tables; ++t) {
+        lines[t][static_cast<std::size_t>(row)] = fmt::to_string(out[t]);
+        out[t].clear();
+      }
     }
   });
-  std::string tsv = "row\tcolumn\tlatitude\tlongitude\tvalue\tresidues\n";
-  for (const auto& line : lines) tsv += line;
-  return tsv;
+  std::vector<std::string> tsvs(tables);
+  for (std::size_t t = 0; t < tables; ++t) {
+    std::size_t size = 0;
+    for (const auto& line : lines[t]) size += line.size();
+    std::string& tsv = tsvs[t];
+    tsv = "row\tcolumn\tlatitude\tlongitude\tvalue\tresidues\n";
+    tsv.reserve(tsv.size() + size);
+    for (auto& line : lines[t]) tsv += line, line = std::string();
+  }
+  return tsvs;
+}
+
+std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const MapSamples& grid, int threads) {
+  return map_grid_tsvs(globe, {&property}, grid, threads).front();
 }
 
 std::string map_grid_tsv(const Globe& globe, const SurfaceProperty& property, const SphereLocator& locator,
