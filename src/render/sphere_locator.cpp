@@ -156,9 +156,28 @@ SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::
 
 namespace {
 
+// A weight below this (of unit vectors: |weights| < 6) makes its triangle's score negative (not a denormal that
+// rounds to -0 when divided by the weights' sum).
+constexpr double kOutside = -1e-300;
+
 // The first candidate of `cell`, in index order, that contains `direction`, else the one it is least outside
 // (weights clamped).
 SphereHit locate_in_cell(const SphereLocator& l, const Vec3& d, int cell) {
+  // Most candidates are rejected by their first or second weight: a first pass looks for the containing one only
+  // (the same test as below), and the least-outside search runs when none contains the point.
+  for (std::int32_t k = l.cell_first[cell]; k < l.cell_first[cell + 1]; ++k) {
+    const std::int32_t t = l.cell_triangles[k];
+    const std::array<double, 9>& n = l.edge_normals[t];
+    const double w0 = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (w0 < kOutside) continue;
+    const double w1 = d[0] * n[3] + d[1] * n[4] + d[2] * n[5];
+    if (w1 < kOutside) continue;
+    const double w2 = d[0] * n[6] + d[1] * n[7] + d[2] * n[8];
+    if (w2 < kOutside) continue;
+    const double total = w0 + w1 + w2;
+    if (!(total > 0)) continue;
+    if (std::min({w0, w1, w2}) / total >= 0) return {t, {w0 / total, w1 / total, w2 / total}};
+  }
   SphereHit best;
   double best_score = -std::numeric_limits<double>::infinity();
   for (std::int32_t k = l.cell_first[cell]; k < l.cell_first[cell + 1]; ++k) {
