@@ -14,6 +14,7 @@
 #include "../util/parallel.hpp"
 #include "canvas.hpp"
 #include "rasterizer.hpp"
+#include "sample_colours.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/render/map_picture.hpp"
 
@@ -63,6 +64,12 @@ std::vector<Vec3> vertex_normals(const std::vector<Vec3>& positions, const std::
   return normals;
 }
 
+// std::lround of a finite v >= 0 that fits (v minus its integer part is exact), without lround's call.
+std::uint32_t round_half_up(double v) {
+  const auto whole = static_cast<std::uint32_t>(v);
+  return v - whole >= 0.5 ? whole + 1 : whole;
+}
+
 struct PanelRect {
   double x, y, width, height;
   std::string label;
@@ -99,6 +106,8 @@ std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const s
   for (std::size_t v = 0; v < positions.size(); ++v)
     light[v] = kAmbient + kDiffuse * std::max(0.0, dot(view(normals[v]), light_direction));
   const std::size_t figures = colourings.size();
+  std::vector<render_detail::SampleColours> colours;
+  for (const Colouring& c : colourings) colours.emplace_back(globe, *c.property, c.range);
   std::vector<std::vector<std::uint32_t>> pixels(figures,
                                                  std::vector<std::uint32_t>(static_cast<std::size_t>(width) * height));
   detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
@@ -121,8 +130,7 @@ std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const s
                                                static_cast<float>(w[2])};
             const double shade = w[0] * light[tri[0]] + w[1] * light[tri[1]] + w[2] * light[tri[2]];
             for (std::size_t f = 0; f < figures; ++f) {
-              const Colouring& c = colourings[f];
-              const Rgb8 colour = colour_of(c.property->info.scale, c.range, value_at(globe, *c.property, t, weights));
+              const Rgb8 colour = colours[f](t, weights);
               sums[f][0] += colour.r * shade, sums[f][1] += colour.g * shade, sums[f][2] += colour.b * shade;
             }
             covered += 1;
@@ -130,10 +138,8 @@ std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const s
         if (covered == 0) continue;
         // Premultiplied ARGB: coverage is the alpha, so edges blend with the white page.
         const double samples = static_cast<double>(ss) * ss;
-        const auto byte = [&](double v) {
-          return static_cast<std::uint32_t>(std::lround(std::clamp(v / samples, 0.0, 255.0)));
-        };
-        const auto alpha = static_cast<std::uint32_t>(std::lround(covered / samples * 255));
+        const auto byte = [&](double v) { return round_half_up(std::clamp(v / samples, 0.0, 255.0)); };
+        const auto alpha = round_half_up(covered / samples * 255);
         for (std::size_t f = 0; f < figures; ++f)
           pixels[f][static_cast<std::size_t>(y) * width + x] =
               (alpha << 24) | (byte(sums[f][0]) << 16) | (byte(sums[f][1]) << 8) | byte(sums[f][2]);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "canvas.hpp"
+#include "sample_colours.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/render/map_picture.hpp"
 
@@ -72,10 +73,9 @@ void outline_path(cairo_t* cr, const ToFigure& to) {
 std::vector<std::uint32_t> map_pixels(const Globe& globe, const SurfaceProperty& property, const MapSamples& s,
                                       const ValueRange& range) {
   std::vector<std::uint32_t> pixels(s.triangle.size(), 0);
+  const render_detail::SampleColours colour(globe, property, range);
   for (std::size_t i = 0; i < pixels.size(); ++i)
-    if (s.triangle[i] >= 0)
-      pixels[i] = render_detail::opaque(
-          colour_of(property.info.scale, range, value_at(globe, property, s.triangle[i], s.weights[i])));
+    if (s.triangle[i] >= 0) pixels[i] = render_detail::opaque(colour(s.triangle[i], s.weights[i]));
   std::vector<std::uint32_t> grown = pixels;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {

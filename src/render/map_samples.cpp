@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "../util/parallel.hpp"
+#include "sample_colours.hpp"
 #include "spheremap/render/colour_scale.hpp"
 #include "spheremap/render/map_picture.hpp"
 
@@ -57,8 +58,7 @@ double value_at(const Globe& globe, const SurfaceProperty& property, std::int32_
                 const std::array<float, 3>& weights) {
   if (triangle < 0) return kNaN;
   const Triangle& t = globe.triangles[triangle];
-  const int nearest = weights[1] > weights[0] ? (weights[2] > weights[1] ? 2 : 1) : (weights[2] > weights[0] ? 2 : 0);
-  const double nearest_value = property.values[t[nearest]];
+  const double nearest_value = property.values[t[render_detail::nearest_corner(weights)]];
   if (property.info.scale == ScaleKind::categorical || std::isnan(nearest_value)) return nearest_value;
   double sum = 0, weight = 0;
   for (int k = 0; k < 3; ++k) {
@@ -95,8 +95,7 @@ int cell_residues(const Globe& globe, const MapSamples& fine, int row, int colum
       const std::int32_t triangle = fine.triangle[i];
       if (triangle < 0) continue;
       const auto& w = fine.weights[i];
-      const int nearest = w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
-      const std::int32_t vertex = globe.triangles[triangle][nearest];
+      const std::int32_t vertex = globe.triangles[triangle][render_detail::nearest_corner(w)];
       if (globe.vertex_residue[vertex] >= 0) residues[count++] = globe.vertex_residue[vertex];
     }
   std::sort(residues.begin(), residues.begin() + count);

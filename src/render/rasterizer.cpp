@@ -6,15 +6,6 @@
 #include <limits>
 
 namespace spheremap::render_detail {
-namespace {
-
-// Twice the signed area of (a, b, p) in y-down coordinates: positive when p is right of a -> b as seen on
-// screen with y up, i.e. for triangles that face the viewer, positive inside.
-double edge(const Vec3& a, const Vec3& b, double px, double py) {
-  return (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
-}
-
-}  // namespace
 
 IdBuffer make_id_buffer(int width, int height) {
   IdBuffer buffer{width, height, {}, {}};
@@ -22,13 +13,6 @@ IdBuffer make_id_buffer(int width, int height) {
   buffer.depth.assign(n, -std::numeric_limits<float>::infinity());
   buffer.triangle.assign(n, -1);
   return buffer;
-}
-
-std::array<double, 3> screen_weights(const Vec3& a, const Vec3& b, const Vec3& c, double x, double y) {
-  const double px = x + 0.5, py = y + 0.5;
-  const double area = edge(a, b, c[0], c[1]);
-  if (area == 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  return {edge(b, c, px, py) / area, edge(c, a, px, py) / area, edge(a, b, px, py) / area};
 }
 
 void rasterize(const std::vector<Vec3>& screen, const std::vector<Triangle>& triangles, IdBuffer& buffer) {

@@ -3,6 +3,7 @@
 // sample, the nearest triangle; shading happens afterwards, once per visible sample.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -26,8 +27,19 @@ IdBuffer make_id_buffer(int width, int height);
 /// triangles is missed; the nearer one, then the lower index, wins.
 void rasterize(const std::vector<Vec3>& screen, const std::vector<Triangle>& triangles, IdBuffer& buffer);
 
+/// Twice the signed area of (a, b, p) in y-down coordinates: positive when p is right of a -> b as seen on
+/// screen with y up, i.e. for triangles that face the viewer, positive inside.
+inline double edge(const Vec3& a, const Vec3& b, double px, double py) {
+  return (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
+}
+
 /// The barycentric weights of the sample centre (x + 0.5, y + 0.5) in screen triangle (a, b, c) (may be
-/// slightly outside [0, 1] on edges: clamp before use).
-std::array<double, 3> screen_weights(const Vec3& a, const Vec3& b, const Vec3& c, double x, double y);
+/// slightly outside [0, 1] on edges: clamp before use). Inline: the shading calls it for every sample.
+inline std::array<double, 3> screen_weights(const Vec3& a, const Vec3& b, const Vec3& c, double x, double y) {
+  const double px = x + 0.5, py = y + 0.5;
+  const double area = edge(a, b, c[0], c[1]);
+  if (area == 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  return {edge(b, c, px, py) / area, edge(c, a, px, py) / area, edge(a, b, px, py) / area};
+}
 
 }  // namespace spheremap::render_detail

@@ -1,0 +1,43 @@
+// Private to src/render: the colour of a property at a sample (a triangle and its barycentric weights), as
+// colour_of(value_at(...)) gives it, with a categorical property's colours looked up per vertex once.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "spheremap/render/colour_scale.hpp"
+#include "spheremap/render/map_picture.hpp"
+
+namespace spheremap::render_detail {
+
+/// The corner (0, 1, 2) of largest weight, the first of equals (value_at's nearest vertex).
+inline int nearest_corner(const std::array<float, 3>& w) {
+  return w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
+}
+
+class SampleColours {
+ public:
+  /// Preconditions: `property` belongs to `globe`; both outlive this.
+  SampleColours(const Globe& globe, const SurfaceProperty& property, const ValueRange& range)
+      : globe_(&globe), property_(&property), range_(range) {
+    // value_at gives a categorical property's nearest vertex value (also when it is NaN).
+    if (property.info.scale != ScaleKind::categorical) return;
+    vertex_.reserve(property.values.size());
+    for (const double v : property.values) vertex_.push_back(colour_of(property.info.scale, range, v));
+  }
+
+  /// colour_of(scale, range, value_at(globe, property, triangle, weights)). Precondition: triangle >= 0.
+  [[nodiscard]] Rgb8 operator()(std::int32_t triangle, const std::array<float, 3>& weights) const {
+    if (!vertex_.empty()) return vertex_[globe_->triangles[triangle][nearest_corner(weights)]];
+    return colour_of(property_->info.scale, range_, value_at(*globe_, *property_, triangle, weights));
+  }
+
+ private:
+  const Globe* globe_;
+  const SurfaceProperty* property_;
+  ValueRange range_;
+  std::vector<Rgb8> vertex_;  // categorical: the colour of each vertex's value; empty otherwise
+};
+
+}  // namespace spheremap::render_detail
