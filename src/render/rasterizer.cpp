@@ -29,10 +29,17 @@ void rasterize(const std::vector<Vec3>& screen, const std::vector<Triangle>& tri
     const int y1 = std::min(buffer.height - 1, static_cast<int>(std::ceil(std::max({a[1], b[1], c[1]}) - 0.5)));
     for (int y = y0; y <= y1; ++y) {
       const double py = y + 0.5;
+      // Along a row each edge() is monotonic in px as computed (each rounded step is), so the samples found
+      // inside are one run: the first outside sample after it ends the row.
+      bool inside_before = false;
       for (int x = x0; x <= x1; ++x) {
         const double px = x + 0.5;
         const double wa = edge(b, c, px, py), wb = edge(c, a, px, py), wc = edge(a, b, px, py);
-        if (wa > 0 || wb > 0 || wc > 0) continue;  // outside (the area is negative: inside is <= 0)
+        if (wa > 0 || wb > 0 || wc > 0) {  // outside (the area is negative: inside is <= 0)
+          if (inside_before) break;
+          continue;
+        }
+        inside_before = true;
         const auto z = static_cast<float>((wa * a[2] + wb * b[2] + wc * c[2]) / area);
         const std::size_t i = static_cast<std::size_t>(y) * buffer.width + x;
         if (z > buffer.depth[i]) {
