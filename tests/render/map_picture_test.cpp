@@ -295,6 +295,21 @@ TEST(MapGrid, ListsCellsWithLatitudeLongitudeValueAndResidues) {
   EXPECT_EQ(lines, 36 * 18);
 }
 
+TEST(MapGrid, SeveralPropertiesAtOnceGiveEachOnesGrid) {
+  const Globe globe = test_globe(3);
+  const SphereLocator locator = make_sphere_locator(globe.sphere, globe.triangles);
+  const MapSamples grid = sample_grid(locator, Projection::mollweide, 72, 36);
+  const SurfaceProperty* octant = find_globe_property(globe, "octant");
+  const SurfaceProperty* z = find_globe_property(globe, "z");
+  for (const int threads : {1, 2}) {
+    const std::vector<std::string> both = map_grid_tsvs(globe, {octant, z}, grid, threads);
+    ASSERT_EQ(both.size(), 2u);
+    EXPECT_EQ(both[0], map_grid_tsv(globe, *octant, grid, 1));
+    EXPECT_EQ(both[1], map_grid_tsv(globe, *z, grid, 1));
+    EXPECT_NE(both[0], both[1]);
+  }
+}
+
 TEST(HemisphereFigure, HasTheSizeIsNotBlankAndIsDeterministic) {
   const Globe globe = test_globe(3);
   HemisphereOptions options;
@@ -321,6 +336,24 @@ TEST(HemisphereFigure, HasTheSizeIsNotBlankAndIsDeterministic) {
   EXPECT_GT(coloured, image.width * image.height / 10);
   options.supersampling = 9;
   EXPECT_THROW(hemisphere_figure(globe, *find_globe_property(globe, "octant"), options), InputError);
+}
+
+TEST(HemisphereFigure, SeveralPropertiesAtOnceGiveEachOnesFigure) {
+  const Globe globe = test_globe(3);
+  HemisphereOptions options;
+  options.width = 500;
+  options.height = 520;
+  options.threads = 2;
+  const SurfaceProperty* octant = find_globe_property(globe, "octant");
+  const SurfaceProperty* z = find_globe_property(globe, "z");
+  const std::vector<std::string> both = hemisphere_figures(globe, {z, octant}, options);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[0], hemisphere_figure(globe, *z, options));
+  EXPECT_EQ(both[1], hemisphere_figure(globe, *octant, options));
+  EXPECT_NE(both[0], both[1]);
+  EXPECT_TRUE(hemisphere_figures(globe, {}, options).empty());
+  options.trace = {TracePath{{{0, 0, 0}, {1, 0, 0}}, {0, 1}}};  // a trace's values are one property's
+  EXPECT_THROW(hemisphere_figures(globe, {z, octant}, options), std::invalid_argument);
 }
 
 TEST(GlobeProperties, SequencePositionRanksPolymerResiduesOfEachChainAndLeavesLigandsOut) {
