@@ -141,17 +141,23 @@ std::string deflate_zlib(const std::string& bytes) {
 
 std::string base64_encode(const std::string& bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = bytes.size() - i;
-    std::uint32_t group = static_cast<std::uint8_t>(bytes[i]) << 16;
-    if (left > 1) group |= static_cast<std::uint8_t>(bytes[i + 1]) << 8;
-    if (left > 2) group |= static_cast<std::uint8_t>(bytes[i + 2]);
-    out.push_back(kAlphabet[(group >> 18) & 63]);
-    out.push_back(kAlphabet[(group >> 12) & 63]);
-    out.push_back(left > 1 ? kAlphabet[(group >> 6) & 63] : '=');
-    out.push_back(left > 2 ? kAlphabet[group & 63] : '=');
+  const auto byte = [&](std::size_t i) -> std::uint32_t { return static_cast<std::uint8_t>(bytes[i]); };
+  std::string out((bytes.size() + 2) / 3 * 4, '=');
+  char* o = out.data();
+  // Whole groups of three bytes written in place (megabytes: no push_back's capacity check), then the tail.
+  const std::size_t whole = bytes.size() / 3 * 3;
+  for (std::size_t i = 0; i < whole; i += 3, o += 4) {
+    const std::uint32_t group = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
+    o[0] = kAlphabet[(group >> 18) & 63];
+    o[1] = kAlphabet[(group >> 12) & 63];
+    o[2] = kAlphabet[(group >> 6) & 63];
+    o[3] = kAlphabet[group & 63];
+  }
+  if (const std::size_t left = bytes.size() - whole; left > 0) {
+    const std::uint32_t group = byte(whole) << 16 | (left > 1 ? byte(whole + 1) << 8 : 0);
+    o[0] = kAlphabet[(group >> 18) & 63];
+    o[1] = kAlphabet[(group >> 12) & 63];
+    if (left > 1) o[2] = kAlphabet[(group >> 6) & 63];  // else '=' (as o[3])
   }
   return out;
 }

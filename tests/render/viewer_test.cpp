@@ -1,6 +1,8 @@
 // index.html: structure, the embedded data read back, escaping of names, determinism, size, refusals.
 #include "spheremap/render/viewer.hpp"
 
+#include "../../src/render/viewer_payload.hpp"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -83,6 +85,15 @@ Embedded read_back(const std::string& page) {
   e.manifest = nlohmann::json::parse(script_text(page, "spheremap-manifest"));
   e.blob = inflate(base64_decode(script_text(page, "spheremap-data")), 64u << 20);
   return e;
+}
+
+TEST(Viewer, Base64EncodesEveryTailLength) {
+  // RFC 4648's test vectors: no tail, one byte left over, two.
+  const std::vector<std::pair<std::string, std::string>> vectors{
+      {"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},        {"foo", "Zm9v"},
+      {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="}, {"foobar", "Zm9vYmFy"}};
+  for (const auto& [bytes, text] : vectors) EXPECT_EQ(detail::base64_encode(bytes), text) << bytes;
+  EXPECT_EQ(detail::base64_encode(std::string("\xff\x00\xfe", 3)), "/wD+");
 }
 
 TEST(Viewer, PageHasItsPartsOnceAndNoPlaceholderLeft) {
