@@ -83,21 +83,27 @@ constexpr int kGridSubsamples = 4;  // per cell side
 
 using CellResidues = std::array<std::int32_t, kGridSubsamples * kGridSubsamples>;
 
+// Calls visit(triangle, weights) for each of the cell's points on the globe (the pixels of the fine samples it
+// covers), row by row.
+template <typename Visit>
+void for_each_cell_point(const MapSamples& fine, int row, int column, Visit&& visit) {
+  for (int sy = 0; sy < kGridSubsamples; ++sy)
+    for (int sx = 0; sx < kGridSubsamples; ++sx) {
+      const std::size_t i = static_cast<std::size_t>(row * kGridSubsamples + sy) * fine.width +
+                            static_cast<std::size_t>(column * kGridSubsamples + sx);
+      if (fine.triangle[i] >= 0) visit(fine.triangle[i], fine.weights[i]);
+    }
+}
+
 // The residues under the cell's points (the pixels of the fine samples it covers; indices into globe.residues),
 // ascending, each once: how many.
 int cell_residues(const Globe& globe, const MapSamples& fine, int row, int column, CellResidues& residues) {
   int count = 0;
   if (globe.vertex_residue.empty()) return 0;
-  for (int sy = 0; sy < kGridSubsamples; ++sy)
-    for (int sx = 0; sx < kGridSubsamples; ++sx) {
-      const std::size_t i = static_cast<std::size_t>(row * kGridSubsamples + sy) * fine.width +
-                            static_cast<std::size_t>(column * kGridSubsamples + sx);
-      const std::int32_t triangle = fine.triangle[i];
-      if (triangle < 0) continue;
-      const auto& w = fine.weights[i];
-      const std::int32_t vertex = globe.triangles[triangle][render_detail::nearest_corner(w)];
-      if (globe.vertex_residue[vertex] >= 0) residues[count++] = globe.vertex_residue[vertex];
-    }
+  for_each_cell_point(fine, row, column, [&](std::int32_t triangle, const std::array<float, 3>& w) {
+    const std::int32_t vertex = globe.triangles[triangle][render_detail::nearest_corner(w)];
+    if (globe.vertex_residue[vertex] >= 0) residues[count++] = globe.vertex_residue[vertex];
+  });
   std::sort(residues.begin(), residues.begin() + count);
   return static_cast<int>(std::unique(residues.begin(), residues.begin() + count) - residues.begin());
 }
@@ -110,17 +116,12 @@ double cell_value(const Globe& globe, const SurfaceProperty& property, const Map
   const bool categorical = property.info.scale == ScaleKind::categorical;
   std::array<double, kGridSubsamples * kGridSubsamples> classes{};
   int class_count = 0;
-  for (int sy = 0; sy < kGridSubsamples; ++sy)
-    for (int sx = 0; sx < kGridSubsamples; ++sx) {
-      const std::size_t i = static_cast<std::size_t>(row * kGridSubsamples + sy) * fine.width +
-                            static_cast<std::size_t>(column * kGridSubsamples + sx);
-      const std::int32_t triangle = fine.triangle[i];
-      if (triangle < 0) continue;
-      const double v = value_at(globe, property, triangle, fine.weights[i]);
-      if (std::isnan(v)) continue;
-      if (categorical) classes[class_count++] = v;
-      sum += v, ++count;
-    }
+  for_each_cell_point(fine, row, column, [&](std::int32_t triangle, const std::array<float, 3>& w) {
+    const double v = value_at(globe, property, triangle, w);
+    if (std::isnan(v)) return;
+    if (categorical) classes[class_count++] = v;
+    sum += v, ++count;
+  });
   double value = kNaN;
   if (categorical) {
     std::sort(classes.begin(), classes.begin() + class_count);

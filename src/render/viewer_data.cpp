@@ -67,7 +67,10 @@ void add_properties(const Mesh& surface, const std::vector<Vec3>& sphere, Viewer
 
 }  // namespace
 
-ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title) {
+namespace {
+
+// The viewer's data without properties: the sizes checked, the geometry and the atoms.
+ViewerData viewer_geometry(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title) {
   if (sphere.size() != surface.vertex_count())
     throw std::invalid_argument("viewer_data_for_map: " + std::to_string(sphere.size()) + " sphere points for " +
                                 std::to_string(surface.vertex_count()) + " surface vertices");
@@ -77,21 +80,20 @@ ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sph
   data.sphere_positions = sphere;
   data.triangles = surface.triangles;
   add_atoms(surface, data);
+  return data;
+}
+
+}  // namespace
+
+ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title) {
+  ViewerData data = viewer_geometry(surface, sphere, std::move(title));
   add_properties(surface, sphere, data);
   return data;
 }
 
 ViewerData viewer_data_for_map(const Mesh& surface, const std::vector<Vec3>& sphere, std::string title,
                                const std::vector<SurfaceProperty>& properties) {
-  if (sphere.size() != surface.vertex_count())
-    throw std::invalid_argument("viewer_data_for_map: " + std::to_string(sphere.size()) + " sphere points for " +
-                                std::to_string(surface.vertex_count()) + " surface vertices");
-  ViewerData data;
-  data.title = std::move(title);
-  data.surface_positions = surface.positions;
-  data.sphere_positions = sphere;
-  data.triangles = surface.triangles;
-  add_atoms(surface, data);
+  ViewerData data = viewer_geometry(surface, sphere, std::move(title));
   for (const SurfaceProperty& property : properties) {
     if (property.values.size() != surface.vertex_count())
       throw std::invalid_argument("viewer_data_for_map: property " + property.info.name + " has " +
