@@ -56,18 +56,7 @@ MapSamples sample_map(const SphereLocator& locator, Projection projection, int w
 
 double value_at(const Globe& globe, const SurfaceProperty& property, std::int32_t triangle,
                 const std::array<float, 3>& weights) {
-  if (triangle < 0) return kNaN;
-  const Triangle& t = globe.triangles[triangle];
-  const double nearest_value = property.values[t[render_detail::nearest_corner(weights)]];
-  if (property.info.scale == ScaleKind::categorical || std::isnan(nearest_value)) return nearest_value;
-  double sum = 0, weight = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double v = property.values[t[k]];
-    if (std::isnan(v)) continue;
-    sum += weights[k] * v;
-    weight += weights[k];
-  }
-  return sum / weight;  // weight > 0: the nearest corner has a value
+  return triangle < 0 ? kNaN : render_detail::sample_value(globe, property, triangle, weights);
 }
 
 ValueRange picture_range(const SurfaceProperty& property, const std::optional<ValueRange>& requested) {
@@ -117,7 +106,7 @@ double cell_value(const Globe& globe, const SurfaceProperty& property, const Map
   std::array<double, kGridSubsamples * kGridSubsamples> classes{};
   int class_count = 0;
   for_each_cell_point(fine, row, column, [&](std::int32_t triangle, const std::array<float, 3>& w) {
-    const double v = value_at(globe, property, triangle, w);
+    const double v = render_detail::sample_value(globe, property, triangle, w);
     if (std::isnan(v)) return;
     if (categorical) classes[class_count++] = v;
     sum += v, ++count;
