@@ -85,12 +85,13 @@ std::vector<std::filesystem::path> write_map_pictures(const std::filesystem::pat
   };
   queue([](const std::filesystem::path& path) { return path.extension() == ".html"; });
   queue([](const std::filesystem::path& path) { return path.extension() == ".png"; });
-  // The grids share each cell's position and residues: one task for all of them, last (the shortest).
+  // The grids share each cell's position and residues: one task for all of them, last, its rows on threads of its
+  // own, so that a core done with the other tasks works on them instead of waiting.
   std::vector<std::string> grids;
   detail::parallel_chunks(static_cast<std::int64_t>(order.size()) + 1, detail::surface_threads(threads),
                           [&](std::int64_t k, int) {
                             if (k == static_cast<std::int64_t>(order.size())) {
-                              grids = map_grid_tsvs(globe, mapped, grid, 1);
+                              grids = map_grid_tsvs(globe, mapped, grid, threads);
                               return;
                             }
                             const std::size_t i = order[static_cast<std::size_t>(k)];
