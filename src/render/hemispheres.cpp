@@ -230,7 +230,8 @@ std::vector<std::string> hemisphere_figures(const Globe& globe, const std::vecto
     throw std::invalid_argument("hemisphere_figures: a trace's values belong to one property");
   if (properties.empty()) return {};
   std::vector<Colouring> colourings;
-  for (const SurfaceProperty* property : properties) colourings.push_back({property, picture_range(*property, options.range)});
+  for (const SurfaceProperty* property : properties)
+    colourings.push_back({property, picture_range(*property, options.range)});
   const HemisphereViews views = hemisphere_views(globe.surface);
   const View front = front_view(views), back = back_view(views);
 
@@ -322,8 +323,7 @@ std::vector<std::string> hemisphere_figures(const Globe& globe, const std::vecto
     }
     render_detail::set_font(cr, title_size, true);
     render_detail::draw_text(cr, w / 2, margin + title_size,
-                             fmt::format("{} · {} · surface and globe", globe.name, property.info.name),
-                             Align::centre);
+                             fmt::format("{} · {} · surface and globe", globe.name, property.info.name), Align::centre);
     render_detail::set_font(cr, font_size * 0.9);
     render_detail::draw_text(cr, w / 2, margin + 1.5 * title_size + 0.45 * font_size,
                              "front: along the surface's axis of least spread; back: turned 180° about the vertical",

@@ -89,9 +89,13 @@ Embedded read_back(const std::string& page) {
 
 TEST(Viewer, Base64EncodesEveryTailLength) {
   // RFC 4648's test vectors: no tail, one byte left over, two.
-  const std::vector<std::pair<std::string, std::string>> vectors{
-      {"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},        {"foo", "Zm9v"},
-      {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="}, {"foobar", "Zm9vYmFy"}};
+  const std::vector<std::pair<std::string, std::string>> vectors{{"", ""},
+                                                                 {"f", "Zg=="},
+                                                                 {"fo", "Zm8="},
+                                                                 {"foo", "Zm9v"},
+                                                                 {"foob", "Zm9vYg=="},
+                                                                 {"fooba", "Zm9vYmE="},
+                                                                 {"foobar", "Zm9vYmFy"}};
   for (const auto& [bytes, text] : vectors) EXPECT_EQ(detail::base64_encode(bytes), text) << bytes;
   EXPECT_EQ(detail::base64_encode(std::string("\xff\x00\xfe", 3)), "/wD+");
 }
