@@ -107,8 +107,16 @@ SolveStats solve_gauss_seidel(const HarmonicProblem& problem, std::vector<double
   return stats;
 }
 
-// Splits `vertices` along `axis` near the median, in the widest gap between consecutive coordinates
-// among the middle tenth (ties: the gap nearest the median), and returns where the upper part starts.
+// An unknown's position and number, side by side: the splits below compare and move these in place,
+// which reads memory in order instead of looking each coordinate up by number.
+struct OrderPoint {
+  Vec3 position;
+  std::int32_t unknown;
+};
+
+// Splits points[first, last) along `axis` near the median, in the widest gap between consecutive
+// coordinates among the middle tenth (ties: the gap nearest the median), and returns where the upper part
+// starts (both parts rearranged in place).
 // Splitting exactly at the median cuts through the row of vertices that holds it: on a regular grid whose
 // vertices are perturbed (or on any mesh whose vertices line up across the axis) that scatters the row
 // over both halves, and the separator becomes a jagged band of one and a half rows or more, which costs
@@ -119,93 +127,97 @@ SolveStats solve_gauss_seidel(const HarmonicProblem& problem, std::vector<double
 // order, and a new order changes the last bits of their maps, which changed one of them by more than
 // rounding (libigl_bumpy.off, 1,250 vertices: the plain map's smallest area ratio 0.0401 -> 0.0420,
 // octant RMS 0.50% -> 0.88%).
-std::vector<std::int32_t>::iterator widest_gap_split(std::vector<std::int32_t>& vertices,
-                                                     const std::vector<Vec3>& positions, int axis, bool in_gap) {
-  auto less = [&](std::int32_t x, std::int32_t y) {
-    return positions[x][axis] != positions[y][axis] ? positions[x][axis] < positions[y][axis] : x < y;
+// Which points end in each part depends only on the set in [first, last) (the comparison is a total
+// order: coordinate, then number), not on their arrangement.
+OrderPoint* widest_gap_split(OrderPoint* first, OrderPoint* last, int axis, bool in_gap) {
+  auto less = [axis](const OrderPoint& x, const OrderPoint& y) {
+    return x.position[axis] != y.position[axis] ? x.position[axis] < y.position[axis] : x.unknown < y.unknown;
   };
-  const auto size = static_cast<std::ptrdiff_t>(vertices.size());
-  const auto median = vertices.begin() + size / 2;
+  const auto size = last - first;
+  OrderPoint* const median = first + size / 2;
   if (!in_gap) {
-    std::nth_element(vertices.begin(), median, vertices.end(), less);
+    std::nth_element(first, median, last, less);
     return median;
   }
-  const auto first = vertices.begin() + size * 9 / 20, last = vertices.begin() + size * 11 / 20 + 1;
-  std::nth_element(vertices.begin(), first, vertices.end(), less);
-  std::nth_element(first, last - 1, vertices.end(), less);
-  std::sort(first, last, less);
-  auto split = median;
+  OrderPoint* const low = first + size * 9 / 20;
+  OrderPoint* const high = first + size * 11 / 20 + 1;
+  std::nth_element(first, low, last, less);
+  std::nth_element(low, high - 1, last, less);
+  std::sort(low, high, less);
+  OrderPoint* split = median;
   double widest = -1;
-  for (auto it = first + 1; it < last; ++it) {
-    const double gap = positions[*it][axis] - positions[*(it - 1)][axis];
+  for (OrderPoint* it = low + 1; it < high; ++it) {
+    const double gap = it->position[axis] - (it - 1)->position[axis];
     if (gap > widest || (gap == widest && std::abs(it - median) < std::abs(split - median))) widest = gap, split = it;
   }
   return split;
 }
 
-// Order of the unknowns for a sparse Cholesky factorization: split the vertices near the median of their
-// longest bounding-box axis (widest_gap_split), take the vertices of one half that touch the other half as the
-// separator, order both halves recursively and the separator last. On surface meshes the separators are curves of O(√n)
-// vertices, which gives nested dissection's O(n^1.5) work instead of minimum degree's.
-std::vector<std::int32_t> nested_dissection_order(const Eigen::SparseMatrix<double>& matrix,
-                                                  const std::vector<Vec3>& positions) {
-  const auto n = static_cast<std::int32_t>(matrix.rows());
+// The neighbours of each unknown among the unknowns, as compressed columns: those of unknown k are
+// index[start[k]] to index[start[k + 1] - 1] (an entry for k itself is allowed).
+struct UnknownGraph {
+  const int* start;
+  const int* index;
+};
+
+// Order of the unknowns for a sparse Cholesky factorization: split the unknowns near the median of their
+// longest bounding-box axis (widest_gap_split), take those of the lower half that touch the upper half as
+// the separator, order both halves recursively and the separator last. On surface meshes the separators
+// are curves of O(√n) vertices, which gives nested dissection's O(n^1.5) work instead of minimum degree's.
+// Each block is a range of one array of points, split in place: the lower half is rearranged into the
+// unknowns that stay in it and the separator, which keeps its range until both halves are ordered.
+std::vector<std::int32_t> nested_dissection_order(const UnknownGraph& graph, const std::vector<Vec3>& positions) {
+  const auto n = static_cast<std::int32_t>(positions.size());
   std::vector<std::int32_t> order;
   order.reserve(n);
-  std::vector<std::int32_t> part(n, 0);  // part id of each vertex during the recursion
-  std::vector<std::int32_t> all(n);
-  std::iota(all.begin(), all.end(), 0);
-  constexpr std::size_t kLeaf = 64;
+  std::vector<OrderPoint> points(static_cast<std::size_t>(n));
+  for (std::int32_t k = 0; k < n; ++k) points[k] = {positions[k], k};
+  std::vector<std::int32_t> part(n, 0);  // part id of each unknown's upper half during the recursion
+  constexpr std::ptrdiff_t kLeaf = 64;
   constexpr std::int32_t kGapSplitVertices = 5000;
   const bool in_gap = n >= kGapSplitVertices;
   std::int32_t next_part = 1;
+  // Emits the unknowns of points[first, last) in increasing number.
+  auto emit_sorted = [&](OrderPoint* first, OrderPoint* last) {
+    const auto begin = order.size();
+    for (OrderPoint* it = first; it != last; ++it) order.push_back(it->unknown);
+    std::sort(order.begin() + static_cast<std::ptrdiff_t>(begin), order.end());
+  };
   struct Task {
-    std::vector<std::int32_t> vertices;
-    std::vector<std::int32_t> separator_after;  // emitted once both halves are done
-    bool emit_only;
+    OrderPoint* first;
+    OrderPoint* last;
+    bool emit_only;  // a separator, emitted once both halves are done
   };
   std::vector<Task> stack;
-  stack.push_back({std::move(all), {}, false});
+  if (n > 0) stack.push_back({points.data(), points.data() + n, false});
   while (!stack.empty()) {
-    Task task = std::move(stack.back());
+    const Task task = stack.back();
     stack.pop_back();
-    if (task.emit_only) {
-      order.insert(order.end(), task.separator_after.begin(), task.separator_after.end());
+    if (task.emit_only || task.last - task.first <= kLeaf) {
+      emit_sorted(task.first, task.last);
       continue;
     }
-    auto& vertices = task.vertices;
-    if (vertices.size() <= kLeaf) {
-      std::sort(vertices.begin(), vertices.end());
-      order.insert(order.end(), vertices.begin(), vertices.end());
-      continue;
-    }
-    Vec3 lo = positions[vertices[0]], hi = lo;
-    for (auto v : vertices)
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], positions[v][a]), hi[a] = std::max(hi[a], positions[v][a]);
+    Vec3 lo = task.first->position, hi = lo;
+    for (const OrderPoint* it = task.first; it != task.last; ++it)
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], it->position[a]), hi[a] = std::max(hi[a], it->position[a]);
     int axis = 0;
     for (int a = 1; a < 3; ++a)
       if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
-    const auto middle = widest_gap_split(vertices, positions, axis, in_gap);
-    const std::int32_t left_id = next_part++, right_id = next_part++;
-    for (auto it = vertices.begin(); it != middle; ++it) part[*it] = left_id;
-    for (auto it = middle; it != vertices.end(); ++it) part[*it] = right_id;
-    std::vector<std::int32_t> left, right, separator;
-    for (auto it = vertices.begin(); it != middle; ++it) {
-      bool touches_right = false;
-      for (Eigen::SparseMatrix<double>::InnerIterator entry(matrix, *it); entry && !touches_right; ++entry)
-        touches_right = part[entry.row()] == right_id;
-      (touches_right ? separator : left).push_back(*it);
-    }
-    right.assign(middle, vertices.end());
-    if (separator.empty() && left.empty()) {  // cannot split further (all points coincide)
-      std::sort(vertices.begin(), vertices.end());
-      order.insert(order.end(), vertices.begin(), vertices.end());
+    OrderPoint* const middle = widest_gap_split(task.first, task.last, axis, in_gap);
+    if (middle == task.first) {  // cannot split further (all points coincide)
+      emit_sorted(task.first, task.last);
       continue;
     }
-    std::sort(separator.begin(), separator.end());
-    stack.push_back({{}, std::move(separator), true});
-    stack.push_back({std::move(right), {}, false});
-    stack.push_back({std::move(left), {}, false});
+    const std::int32_t upper_id = next_part++;
+    for (const OrderPoint* it = middle; it != task.last; ++it) part[it->unknown] = upper_id;
+    OrderPoint* const separator = std::partition(task.first, middle, [&](const OrderPoint& point) {
+      for (int e = graph.start[point.unknown]; e < graph.start[point.unknown + 1]; ++e)
+        if (part[graph.index[e]] == upper_id) return false;
+      return true;
+    });
+    stack.push_back({separator, middle, true});
+    stack.push_back({middle, task.last, false});
+    stack.push_back({task.first, separator, false});
   }
   return order;
 }
@@ -265,7 +277,8 @@ bool solve_cholesky(const HarmonicProblem& problem, const std::vector<std::int32
   // molecular surfaces it fills less: map_to_sphere chooses between the two through ReusableCholesky, which this
   // one-off solve does not). The lower triangle is written column by column in that order, directly in CHOLMOD's
   // format, and factorized in natural order.
-  const auto order = nested_dissection_order(matrix, unknown_positions);  // order[k]: unknown at row k
+  const auto order = nested_dissection_order({matrix.outerIndexPtr(), matrix.innerIndexPtr()},
+                                             unknown_positions);  // order[k]: unknown at row k
   std::vector<std::int32_t> row_of(static_cast<std::size_t>(unknowns));
   for (std::int32_t k = 0; k < unknowns; ++k) row_of[order[k]] = k;
   Cholmod cholmod;
@@ -367,10 +380,15 @@ std::vector<std::int32_t> geometric_order_of(const VertexRings& rings, const std
   const auto count = static_cast<std::int32_t>(unknowns.vertex.size());
   std::vector<Vec3> unknown_positions(static_cast<std::size_t>(count));
   for (std::int32_t k = 0; k < count; ++k) unknown_positions[k] = positions[unknowns.vertex[k]];
-  // Only the pattern matters for the order: uniform weights.
-  const EdgeWeights uniform{std::vector<double>(rings.neighbors.size(), 1.0), true, 0};
-  const HarmonicProblem pattern_problem{&rings, &uniform, &positions, apart, {}};
-  const auto order = nested_dissection_order(problem_matrix(pattern_problem, unknowns.index, count), unknown_positions);
+  // Only the pattern matters for the order: the neighbours that are unknowns, read off the rings.
+  std::vector<int> start(static_cast<std::size_t>(count) + 1, 0), index;
+  index.reserve(rings.neighbors.size());
+  for (std::int32_t k = 0; k < count; ++k) {
+    for (const auto w : rings.ring(unknowns.vertex[k]))
+      if (unknowns.index[w] >= 0) index.push_back(unknowns.index[w]);
+    start[k + 1] = static_cast<int>(index.size());
+  }
+  const auto order = nested_dissection_order({start.data(), index.data()}, unknown_positions);
   std::vector<std::int32_t> vertices(static_cast<std::size_t>(count));
   for (std::int32_t k = 0; k < count; ++k) vertices[k] = unknowns.vertex[order[k]];
   return vertices;
