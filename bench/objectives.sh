@@ -2,7 +2,9 @@
 # Maps each input with each objective (`spheremap map --objective O`) and prints the Markdown rows of
 # BENCHMARKS.md's "Objectives" table: distortion, certificate, the optimization's steps and times.
 #   bench/objectives.sh [INPUT...]   (default: bunny, armadillo, cheburashka and five of the paper's structures;
-#                                     SPHEREMAP=path/to/binary, OBJECTIVES="paper area conformal balanced")
+#                                     SPHEREMAP=path/to/binary, OBJECTIVES="paper area conformal balanced",
+#                                     TIME_CAP=seconds: a map that takes longer is stopped and its row says
+#                                     "not run", with the vertex count of the paper's map of the input)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 data=../shared/data
@@ -16,8 +18,19 @@ echo "|---|---:|---|---:|---:|---:|---|---|---:|---:|"
 for f in "${inputs[@]}"; do
   for o in ${OBJECTIVES:-paper area conformal balanced}; do
     rm -rf "$out/r"
-    "${SPHEREMAP:-./build/spheremap}" map "$f" -o "$out/r" -q --objective "$o" >/dev/null 2>"$out/err"
+    cap=()
+    [ -n "${TIME_CAP:-}" ] && cap=(timeout "$TIME_CAP")
+    "${cap[@]}" "${SPHEREMAP:-./build/spheremap}" map "$f" -o "$out/r" -q --no-pictures --objective "$o" \
+      >/dev/null 2>"$out/err"
     code=$?
+    if [ "$code" = 124 ] && [ -n "${TIME_CAP:-}" ]; then
+      rm -rf "$out/r"
+      "${cap[@]}" "${SPHEREMAP:-./build/spheremap}" map "$f" -o "$out/r" -q --no-pictures >/dev/null 2>&1
+      vertices=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["mesh"]["vertices"])' \
+        "$out/r/report.json" 2>/dev/null)
+      echo "| $(basename "$f") | ${vertices:-?} | $o | not run: over the ${TIME_CAP} s time cap | | | | | | |"
+      continue
+    fi
     if [ ! -f "$out/r/report.json" ]; then
       echo "| $(basename "$f") | | $o | exit $code: $(head -c 200 "$out/err") | | | | | | |"
       continue
@@ -29,7 +42,8 @@ r = json.load(open(path))
 d, c, t = r["distortion"], r["certificate"], r["timings_seconds"]
 o = r["map"].get("objective")
 total = sum(v for v in t.values() if isinstance(v, (int, float)))
-steps = f'{o["iterations"]} ({o["stop_reason"]}{"" if o["outcome"] == "optimized" else ", " + o["outcome"]})' if o else "—"
+stages = f', {o["stages"]} stages, shape weight {o["shape_weight"]:g}' if o and o.get("stages", 1) > 1 else ""
+steps = f'{o["iterations"]} ({o["stop_reason"]}{stages}{"" if o["outcome"] == "optimized" else ", " + o["outcome"]})' if o else "—"
 seconds = f'{t["objective"]:.2f}' if o else "—"
 print(f'| {name} | {r["mesh"]["vertices"]} | {objective} | {d["angle_distortion_mean_degrees"]:.2f} | '
       f'{d["area_log_ratio_mean"]:.3f} | {d["octant_rms_deviation_percent"]:.2f} | {"yes" if c["certified"] else "**no**"} | '

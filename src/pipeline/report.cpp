@@ -261,13 +261,18 @@ nlohmann::json fallback_json(const FallbackReport& fallback) {
 
 nlohmann::json objective_json(const ObjectiveReport& objective) {
   const auto& o = objective.optimization;
-  return {{"objective", to_string(objective.objective)},
-          {"energy", to_string(objective.energy)},
-          {"outcome", to_string(objective.outcome)},
-          {"iterations", o.iterations},
-          {"stop_reason", to_string(o.stop_reason)},
-          {"energy_before", o.energy_before},
-          {"energy_after", o.energy_after}};
+  nlohmann::json json = {{"objective", to_string(objective.objective)},
+                         {"energy", to_string(objective.energy)},
+                         {"outcome", to_string(objective.outcome)},
+                         {"iterations", o.iterations},
+                         {"stop_reason", to_string(o.stop_reason)},
+                         {"energy_before", o.energy_before},
+                         {"energy_after", o.energy_after}};
+  if (objective.energy == SphereEnergy::kLogAreaRatio) {
+    json["stages"] = objective.stages;
+    json["shape_weight"] = objective.shape_weight;
+  }
+  return json;
 }
 
 nlohmann::json map_json(const SphereMap& map) {

@@ -1,5 +1,9 @@
 #include "objective.hpp"
 
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -18,6 +22,42 @@ SphereEnergy energy_of(MapObjective objective) {
     case MapObjective::kPaper: break;
   }
   return SphereEnergy::kSymmetricDirichlet;
+}
+
+// The area objective's shape weights, largest first. The first stage always runs; each later one only
+// while the map misses the area goal (below), continuing from where the last stopped: a smaller weight
+// lets the triangles shear further towards equal areas, at a cost in angles, on the meshes that need it.
+std::vector<double> area_shape_weights() {
+  return {kShapeWeight, 0.03, 0.01};
+}
+
+// Issue 26's goal for the area objective: mean |ln area ratio| <= 0.15 and octant RMS <= 1.5%, with the
+// definitions of metrics/distortion (which this layer may not include): per triangle of non-zero area,
+// its share of the sphere over its share of the surface; octants of the globe (the superposed map) by
+// the sign of each corner sum's coordinates, weighted by surface area.
+constexpr double kAreaGoalLogRatio = 0.15;
+constexpr double kAreaGoalOctantRms = 1.5;
+
+bool area_goal_met(const Mesh& mesh, const Finished& finished) {
+  double total = 0;
+  for (const auto& t : mesh.triangles) total += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+  if (!(total > 0)) return true;
+  double log_sum = 0;
+  std::size_t counted = 0;
+  std::array<double, 8> octant{};
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const double area = triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+    const Vec3 centre = finished.sphere[t[0]] + finished.sphere[t[1]] + finished.sphere[t[2]];
+    octant[(centre[0] < 0 ? 1 : 0) + (centre[1] < 0 ? 2 : 0) + (centre[2] < 0 ? 4 : 0)] += area;
+    if (!(area > 0)) continue;
+    const double ratio = (std::abs(finished.solid_angles[i]) / (4 * std::numbers::pi)) / (area / total);
+    log_sum += std::abs(std::log(std::max(ratio, std::numeric_limits<double>::min())));
+    ++counted;
+  }
+  double squared = 0;
+  for (const double a : octant) squared += (100 * a / total - 12.5) * (100 * a / total - 12.5);
+  return log_sum <= kAreaGoalLogRatio * static_cast<double>(counted) && std::sqrt(squared / 8) <= kAreaGoalOctantRms;
 }
 
 }  // namespace
@@ -41,23 +81,37 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
   fixed[north] = fixed[south] = 1;
   SphereOptimizeOptions optimize;
   optimize.energy = report.energy;
-  optimize.max_iterations = options.objective_max_iterations;
-  try {
-    report.optimization = optimize_on_sphere(mesh.positions, mesh.triangles, sphere, fixed, optimize);
-  } catch (const std::invalid_argument&) {
-    // Rotating back rounded a certified but nearly flat triangle to a non-positive orientation.
-    report.outcome = ObjectiveOutcome::kStartNotCertified;
-    timer.lap("objective");
-    return;
-  }
   MapOptions plain = options;
   plain.repair = false;  // an optimized map that does not certify is dropped, not untangled
-  auto candidate = finish_map(mesh, input, std::move(sphere), plain);
-  if (candidate.certificate.certified()) {
+  const auto weights =
+      report.energy == SphereEnergy::kLogAreaRatio ? area_shape_weights() : std::vector<double>{kShapeWeight};
+  report.outcome = ObjectiveOutcome::kResultNotCertified;
+  for (std::size_t stage = 0; stage < weights.size(); ++stage) {
+    optimize.shape_weight = weights[stage];
+    optimize.max_iterations = options.objective_max_iterations - report.optimization.iterations;
+    if (stage > 0 && optimize.max_iterations <= 0) break;
+    SphereOptimizeReport step;
+    try {
+      step = optimize_on_sphere(mesh.positions, mesh.triangles, sphere, fixed, optimize);
+    } catch (const std::invalid_argument&) {
+      // Rotating back rounded a certified but nearly flat triangle to a non-positive orientation.
+      if (stage == 0) report.outcome = ObjectiveOutcome::kStartNotCertified;
+      break;
+    }
+    auto candidate = finish_map(mesh, input, sphere, plain);
+    if (!candidate.certificate.certified()) {  // the last certified stage's map stays
+      if (stage == 0) report.optimization = step;
+      break;
+    }
     finished = std::move(candidate);
     report.outcome = ObjectiveOutcome::kOptimized;
-  } else {
-    report.outcome = ObjectiveOutcome::kResultNotCertified;
+    const double before = stage == 0 ? step.energy_before : report.optimization.energy_before;
+    step.iterations += report.optimization.iterations;
+    report.optimization = step;
+    report.optimization.energy_before = before;
+    report.stages = static_cast<int>(stage) + 1;
+    if (report.energy == SphereEnergy::kLogAreaRatio) report.shape_weight = weights[stage];
+    if (report.energy != SphereEnergy::kLogAreaRatio || area_goal_met(mesh, finished)) break;
   }
   timer.lap("objective");
 }

@@ -128,8 +128,8 @@ double dirichlet_n(const RestTriangle& rest, const Vec3& a, const Vec3& b, const
 }
 
 // f = A ln²(S/A) + w A N/S.
-Partials log_area_partials(double area, double n, double s) {
-  const double w = kShapeWeight, l = std::log(s / area);
+Partials log_area_partials(double w, double area, double n, double s) {
+  const double l = std::log(s / area);
   return {area * l * l + w * area * n / s,
           w * area / s,
           2 * area * l / s - w * area * n / (s * s),
@@ -139,8 +139,8 @@ Partials log_area_partials(double area, double n, double s) {
 }
 
 // f = A N/S + w A³/S².
-Partials conformal_partials(double area, double n, double s) {
-  const double w = kCollapseBarrierWeight, a3 = area * area * area;
+Partials conformal_partials(double w, double area, double n, double s) {
+  const double a3 = area * area * area;
   return {area * n / s + w * a3 / (s * s),
           area / s,
           -area * n / (s * s) - 2 * w * a3 / (s * s * s),
@@ -167,45 +167,46 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
   return n * (1 + q);
 }
 
-double log_area_ratio(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c) {
   const double s = half_det(a, b, c);
   if (!(s > 0)) return std::numeric_limits<double>::infinity();
-  return log_area_partials(rest.area, dirichlet_n(rest, a, b, c), s).f;
+  return log_area_partials(weight, rest.area, dirichlet_n(rest, a, b, c), s).f;
 }
 
-double log_area_ratio(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
-                      Matrix9& hessian) {
+double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
+                      Vector9& gradient, Matrix9& hessian) {
   const ChordTerms t = chord_terms(rest, a, b, c);
-  return chain(t, log_area_partials(rest.area, t.n, t.s), gradient, hessian);
+  return chain(t, log_area_partials(weight, rest.area, t.n, t.s), gradient, hessian);
 }
 
-double conformal(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+double conformal(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c) {
   const double s = half_det(a, b, c);
   if (!(s > 0)) return std::numeric_limits<double>::infinity();
-  return conformal_partials(rest.area, dirichlet_n(rest, a, b, c), s).f;
+  return conformal_partials(weight, rest.area, dirichlet_n(rest, a, b, c), s).f;
 }
 
-double conformal(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
-                 Matrix9& hessian) {
+double conformal(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
+                 Vector9& gradient, Matrix9& hessian) {
   const ChordTerms t = chord_terms(rest, a, b, c);
-  return chain(t, conformal_partials(rest.area, t.n, t.s), gradient, hessian);
+  return chain(t, conformal_partials(weight, rest.area, t.n, t.s), gradient, hessian);
 }
 
-double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c) {
+double triangle_energy(SphereEnergy energy, double weight, const RestTriangle& rest, const Vec3& a, const Vec3& b,
+                       const Vec3& c) {
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c);
-    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, a, b, c);
-    case SphereEnergy::kConformal: return conformal(rest, a, b, c);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, weight, a, b, c);
+    case SphereEnergy::kConformal: return conformal(rest, weight, a, b, c);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double triangle_energy(SphereEnergy energy, const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c,
-                       Vector9& gradient, Matrix9& hessian) {
+double triangle_energy(SphereEnergy energy, double weight, const RestTriangle& rest, const Vec3& a, const Vec3& b,
+                       const Vec3& c, Vector9& gradient, Matrix9& hessian) {
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
-    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, a, b, c, gradient, hessian);
-    case SphereEnergy::kConformal: return conformal(rest, a, b, c, gradient, hessian);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, weight, a, b, c, gradient, hessian);
+    case SphereEnergy::kConformal: return conformal(rest, weight, a, b, c, gradient, hessian);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }

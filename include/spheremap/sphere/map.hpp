@@ -158,6 +158,10 @@ struct ObjectiveReport {
   ObjectiveOutcome outcome = ObjectiveOutcome::kNone;
   SphereEnergy energy = SphereEnergy::kSymmetricDirichlet;
   SphereOptimizeReport optimization;  // energies per unit of the map's area
+  /// The optimization's stages run (the area objective's each with a smaller shape weight, while its
+  /// goal is missed; 1 for the others) and, for the area objective, the last stage's shape weight.
+  int stages = 0;
+  double shape_weight = 0;
 };
 
 /// How the map was made: for the report and for tuning, not needed to use the map.

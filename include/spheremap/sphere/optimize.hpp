@@ -18,24 +18,28 @@ enum class SphereEnergy {
   /// the map's) to its chord triangle on the sphere, with ½·det[a, b, c] as the image area: area and
   /// angles together, +inf as a triangle collapses or folds.
   kSymmetricDirichlet,
-  /// Equal area: A·ln²(S/A) per triangle (A its target area, S its ½·det), plus kShapeWeight times the
+  /// Equal area: A·ln²(S/A) per triangle (A its target area, S its ½·det), plus shape_weight times the
   /// conformal distortion A·N/S (N the Dirichlet energy of the affine map), which pins the shapes the
   /// area term leaves free and is the barrier: +inf as a triangle collapses or folds.
   kLogAreaRatio,
   /// Conformal: A·N/S (MIPS: σ₁/σ₂ + σ₂/σ₁ of each triangle's affine map, weighted by its area, 2 at a
-  /// similarity whatever the scale) plus kCollapseBarrierWeight·A·(A/S)², which only matters when a
+  /// similarity whatever the scale) plus collapse_barrier_weight·A·(A/S)², which only matters when a
   /// triangle keeps less than about 1e-5 of its share, just above the collapse floor (+inf as it
   /// collapses or folds); a heavier one holds thin limbs back (armadillo: 12.4° mean angle error at
   /// 1e-6 against 6.5° at 1e-10, both certified).
   kConformal,
 };
 
-/// Weights of the secondary terms of kLogAreaRatio and kConformal (see there).
+/// Default weights of the secondary terms of kLogAreaRatio and kConformal (see there).
 inline constexpr double kShapeWeight = 0.1;
 inline constexpr double kCollapseBarrierWeight = 1e-10;
 
 struct SphereOptimizeOptions {
   SphereEnergy energy = SphereEnergy::kSymmetricDirichlet;
+  /// kLogAreaRatio's shape term and kConformal's collapse barrier (> 0: each is what keeps its energy
+  /// infinite as a triangle collapses).
+  double shape_weight = kShapeWeight;
+  double collapse_barrier_weight = kCollapseBarrierWeight;
   int max_iterations = 100;
   /// Stop when an iteration lowers the energy by less than this fraction of it.
   double relative_tolerance = 1e-6;
