@@ -268,10 +268,8 @@ nlohmann::json objective_json(const ObjectiveReport& objective) {
                          {"stop_reason", to_string(o.stop_reason)},
                          {"energy_before", o.energy_before},
                          {"energy_after", o.energy_after}};
-  if (objective.energy == SphereEnergy::kLogAreaRatio) {
-    json["stages"] = objective.stages;
-    json["shape_weight"] = objective.shape_weight;
-  }
+  if (objective.energy != SphereEnergy::kSymmetricDirichlet) json["stages"] = objective.stages;
+  if (objective.energy == SphereEnergy::kLogAreaRatio) json["shape_weight"] = objective.shape_weight;
   return json;
 }
 

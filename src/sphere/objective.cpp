@@ -24,11 +24,27 @@ SphereEnergy energy_of(MapObjective objective) {
   return SphereEnergy::kSymmetricDirichlet;
 }
 
-// The area objective's shape weights, largest first. The first stage always runs; each later one only
-// while the map misses the area goal (below), continuing from where the last stopped: a smaller weight
-// lets the triangles shear further towards equal areas, at a cost in angles, on the meshes that need it.
-std::vector<double> area_shape_weights() {
-  return {kShapeWeight, 0.03, 0.01};
+// One stage of an optimization: the weights of its energy's second term (SphereOptimizeOptions).
+struct Stage {
+  double shape_weight = kShapeWeight;
+  double collapse_barrier_weight = kCollapseBarrierWeight;
+  double collapse_threshold = 0;
+};
+
+// The stages of each energy, each from where the last stopped.
+// - area: shape weights 0.1, 0.03, 0.01; the first always runs, each later one only while the map misses
+//   the area goal (below): a smaller weight lets the triangles shear further towards equal areas, at a
+//   cost in angles, on the meshes that need it, and leaves the others' maps as the first weight makes them.
+// - conformal: the power-law collapse barrier (which keeps the first steps away from the floor), then
+//   the barrier that acts only below 2e-6 of a triangle's share, twice the certificate's collapse floor,
+//   so that compressed limbs may go down to it, with weight 1e4 so that they do not go through it.
+std::vector<Stage> stages_of(SphereEnergy energy) {
+  switch (energy) {
+    case SphereEnergy::kLogAreaRatio: return {Stage{}, Stage{0.03}, Stage{0.01}};
+    case SphereEnergy::kConformal: return {Stage{}, Stage{kShapeWeight, 1e4, 2e-6}};
+    case SphereEnergy::kSymmetricDirichlet: break;
+  }
+  return {Stage{}};
 }
 
 // Issue 26's goal for the area objective: mean |ln area ratio| <= 0.15 and octant RMS <= 1.5%, with the
@@ -83,11 +99,12 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
   optimize.energy = report.energy;
   MapOptions plain = options;
   plain.repair = false;  // an optimized map that does not certify is dropped, not untangled
-  const auto weights =
-      report.energy == SphereEnergy::kLogAreaRatio ? area_shape_weights() : std::vector<double>{kShapeWeight};
+  const auto stages = stages_of(report.energy);
   report.outcome = ObjectiveOutcome::kResultNotCertified;
-  for (std::size_t stage = 0; stage < weights.size(); ++stage) {
-    optimize.shape_weight = weights[stage];
+  for (std::size_t stage = 0; stage < stages.size(); ++stage) {
+    optimize.shape_weight = stages[stage].shape_weight;
+    optimize.collapse_barrier_weight = stages[stage].collapse_barrier_weight;
+    optimize.collapse_threshold = stages[stage].collapse_threshold;
     optimize.max_iterations = options.objective_max_iterations - report.optimization.iterations;
     if (stage > 0 && optimize.max_iterations <= 0) break;
     SphereOptimizeReport step;
@@ -110,8 +127,8 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
     report.optimization = step;
     report.optimization.energy_before = before;
     report.stages = static_cast<int>(stage) + 1;
-    if (report.energy == SphereEnergy::kLogAreaRatio) report.shape_weight = weights[stage];
-    if (report.energy != SphereEnergy::kLogAreaRatio || area_goal_met(mesh, finished)) break;
+    if (report.energy == SphereEnergy::kLogAreaRatio) report.shape_weight = stages[stage].shape_weight;
+    if (report.energy == SphereEnergy::kLogAreaRatio && area_goal_met(mesh, finished)) break;
   }
   timer.lap("objective");
 }

@@ -80,7 +80,9 @@ class Optimizer {
         options_(options),
         dof_(sphere.size(), -1),
         threads_(detail::surface_threads(options.threads)),
-        weight_(options.energy == SphereEnergy::kConformal ? options.collapse_barrier_weight : options.shape_weight) {
+        term_(options.energy == SphereEnergy::kConformal
+                  ? detail::SecondTerm(options.collapse_barrier_weight, options.collapse_threshold)
+                  : detail::SecondTerm(options.shape_weight)) {
     for (std::size_t v = 0; v < sphere.size(); ++v)
       if (!fixed[v]) dof_[v] = 2 * free_count_++;
     cholesky_.cholmod().print = 0;  // a matrix that is not positive definite is an answer here, not an error
@@ -94,7 +96,7 @@ class Optimizer {
       double sum = 0;
       for (auto t = first; t < last && std::isfinite(sum); ++t) {
         const auto& tri = triangles_[static_cast<std::size_t>(t)];
-        sum += detail::triangle_energy(options_.energy, weight_, rest_[static_cast<std::size_t>(t)], points[tri[0]],
+        sum += detail::triangle_energy(options_.energy, term_, rest_[static_cast<std::size_t>(t)], points[tri[0]],
                                        points[tri[1]], points[tri[2]]);
       }
       partial[static_cast<std::size_t>(first / kChunk)] = sum;
@@ -273,7 +275,7 @@ class Optimizer {
     const auto& tri = triangles_[t];
     detail::Vector9 g;
     detail::Matrix9 h;
-    detail::triangle_energy(options_.energy, weight_, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g,
+    detail::triangle_energy(options_.energy, term_, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g,
                             h);
     Eigen::Matrix<double, 3, 2> basis[3];
     for (int k = 0; k < 3; ++k) {
@@ -367,7 +369,7 @@ class Optimizer {
   std::vector<Eigen::Index> dof_;  // first tangent coordinate of each free vertex, -1 if fixed
   Eigen::Index free_count_ = 0;
   int threads_;
-  double weight_;  // of the energy's second term
+  detail::SecondTerm term_;  // the energy's second term
   std::vector<detail::RestTriangle> rest_;
   double total_area_ = 0;
   SparseMatrix hessian_;             // fixed pattern, values refilled every iteration

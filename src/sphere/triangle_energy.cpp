@@ -138,15 +138,27 @@ Partials log_area_partials(double w, double area, double n, double s) {
           2 * area * (1 - l) / (s * s) + 2 * w * area * n / (s * s * s)};
 }
 
-// f = A N/S + w A³/S².
-Partials conformal_partials(double w, double area, double n, double s) {
+// f = A N/S + w A³/S², or with a threshold κ: f = A N/S + w A φ(S/(κA)), φ(x) = -(x-1)² ln x below
+// x = 1 and 0 above (the barrier of incremental potential contact: twice differentiable at x = 1,
+// unbounded as x -> 0, nothing at all on the triangles above κ of their share).
+Partials conformal_partials(SecondTerm term, double area, double n, double s) {
+  const double w = term.weight;
+  Partials p{area * n / s, area / s, -area * n / (s * s), 0, -area / (s * s), 2 * area * n / (s * s * s)};
+  if (term.threshold > 0) {
+    const double kappa = term.threshold, x = s / (kappa * area);
+    if (x < 1) {
+      const double l = std::log(x);
+      p.f += w * area * (-(x - 1) * (x - 1) * l);
+      p.s += w / kappa * (-2 * (x - 1) * l - (x - 1) * (x - 1) / x);
+      p.ss += w / (kappa * kappa * area) * (-2 * l - 2 * (x - 1) / x - (x - 1) * (x + 1) / (x * x));
+    }
+    return p;
+  }
   const double a3 = area * area * area;
-  return {area * n / s + w * a3 / (s * s),
-          area / s,
-          -area * n / (s * s) - 2 * w * a3 / (s * s * s),
-          0,
-          -area / (s * s),
-          2 * area * n / (s * s * s) + 6 * w * a3 / (s * s * s * s)};
+  p.f += w * a3 / (s * s);
+  p.s -= 2 * w * a3 / (s * s * s);
+  p.ss += 6 * w * a3 / (s * s * s * s);
+  return p;
 }
 
 }  // namespace
@@ -179,34 +191,34 @@ double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, co
   return chain(t, log_area_partials(weight, rest.area, t.n, t.s), gradient, hessian);
 }
 
-double conformal(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c) {
+double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c) {
   const double s = half_det(a, b, c);
   if (!(s > 0)) return std::numeric_limits<double>::infinity();
-  return conformal_partials(weight, rest.area, dirichlet_n(rest, a, b, c), s).f;
+  return conformal_partials(term, rest.area, dirichlet_n(rest, a, b, c), s).f;
 }
 
-double conformal(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
+double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c,
                  Vector9& gradient, Matrix9& hessian) {
   const ChordTerms t = chord_terms(rest, a, b, c);
-  return chain(t, conformal_partials(weight, rest.area, t.n, t.s), gradient, hessian);
+  return chain(t, conformal_partials(term, rest.area, t.n, t.s), gradient, hessian);
 }
 
-double triangle_energy(SphereEnergy energy, double weight, const RestTriangle& rest, const Vec3& a, const Vec3& b,
+double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
                        const Vec3& c) {
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c);
-    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, weight, a, b, c);
-    case SphereEnergy::kConformal: return conformal(rest, weight, a, b, c);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, term.weight, a, b, c);
+    case SphereEnergy::kConformal: return conformal(rest, term, a, b, c);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-double triangle_energy(SphereEnergy energy, double weight, const RestTriangle& rest, const Vec3& a, const Vec3& b,
+double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
                        const Vec3& c, Vector9& gradient, Matrix9& hessian) {
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
-    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, weight, a, b, c, gradient, hessian);
-    case SphereEnergy::kConformal: return conformal(rest, weight, a, b, c, gradient, hessian);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, term.weight, a, b, c, gradient, hessian);
+    case SphereEnergy::kConformal: return conformal(rest, term, a, b, c, gradient, hessian);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }

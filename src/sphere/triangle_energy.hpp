@@ -39,22 +39,30 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
 double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& b, const Vec3& c, Vector9& gradient,
                            Matrix9& hessian);
 
-/// kLogAreaRatio and kConformal (optimize.hpp) with `weight` the weight of their second term (the shape
-/// term, the collapse barrier), with their gradient and Hessian in the second forms (precondition there:
+/// The second term of an energy: its weight and, for kConformal, the ratio S/A below which its collapse
+/// barrier acts (0: the power law weight·A·(A/S)² everywhere; see SphereOptimizeOptions).
+struct SecondTerm {
+  SecondTerm(double weight_, double threshold_ = 0) : weight(weight_), threshold(threshold_) {}  // NOLINT: from a weight
+  double weight;
+  double threshold;
+};
+
+/// kLogAreaRatio and kConformal (optimize.hpp) with `weight`/`term` their second term (the shape term,
+/// the collapse barrier), with their gradient and Hessian in the second forms (precondition there:
 /// S > 0); the first forms give +inf if S <= 0.
 double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c);
 double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
                       Vector9& gradient, Matrix9& hessian);
-double conformal(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c);
-double conformal(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
+double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c);
+double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c,
                  Vector9& gradient, Matrix9& hessian);
 
-/// The energy `energy` of one triangle (a new SphereEnergy gets its two functions here), `weight` the
-/// weight of its second term (unused by kSymmetricDirichlet): +inf when the triangle is not positively
-/// oriented; the second form also gives the gradient and Hessian in R^9 (precondition: positively oriented).
-double triangle_energy(SphereEnergy energy, double weight, const RestTriangle& rest, const Vec3& a, const Vec3& b,
+/// The energy `energy` of one triangle (a new SphereEnergy gets its two functions here), `term` its
+/// second term (unused by kSymmetricDirichlet): +inf when the triangle is not positively oriented; the
+/// second form also gives the gradient and Hessian in R^9 (precondition: positively oriented).
+double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
                        const Vec3& c);
-double triangle_energy(SphereEnergy energy, double weight, const RestTriangle& rest, const Vec3& a, const Vec3& b,
+double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
                        const Vec3& c, Vector9& gradient, Matrix9& hessian);
 
 }  // namespace spheremap::detail

@@ -40,6 +40,10 @@ struct SphereOptimizeOptions {
   /// infinite as a triangle collapses).
   double shape_weight = kShapeWeight;
   double collapse_barrier_weight = kCollapseBarrierWeight;
+  /// If > 0, kConformal's collapse barrier is collapse_barrier_weight·A·φ(S/(κA)) with κ this threshold,
+  /// φ(x) = -(x-1)²·ln x below x = 1 and 0 above: nothing on the triangles that keep more than κ of their
+  /// share, unbounded as one goes to 0 (instead of the power law, which acts a little on all of them).
+  double collapse_threshold = 0;
   int max_iterations = 100;
   /// Stop when an iteration lowers the energy by less than this fraction of it.
   double relative_tolerance = 1e-6;
