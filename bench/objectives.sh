@@ -42,7 +42,8 @@ r = json.load(open(path))
 d, c, t = r["distortion"], r["certificate"], r["timings_seconds"]
 o = r["map"].get("objective")
 total = sum(v for v in t.values() if isinstance(v, (int, float)))
-stages = f', {o["stages"]} stages, shape weight {o["shape_weight"]:g}' if o and o.get("stages", 1) > 1 else ""
+weight = f', shape weight {o["shape_weight"]:g}' if o and "shape_weight" in o else ""
+stages = f', {o["stages"]} stages{weight}' if o and o.get("stages", 1) > 1 else ""
 steps = f'{o["iterations"]} ({o["stop_reason"]}{stages}{"" if o["outcome"] == "optimized" else ", " + o["outcome"]})' if o else "—"
 seconds = f'{t["objective"]:.2f}' if o else "—"
 print(f'| {name} | {r["mesh"]["vertices"]} | {objective} | {d["angle_distortion_mean_degrees"]:.2f} | '

@@ -23,10 +23,11 @@ enum class SphereEnergy {
   /// area term leaves free and is the barrier: +inf as a triangle collapses or folds.
   kLogAreaRatio,
   /// Conformal: A·N/S (MIPS: σ₁/σ₂ + σ₂/σ₁ of each triangle's affine map, weighted by its area, 2 at a
-  /// similarity whatever the scale) plus collapse_barrier_weight·A·(A/S)², which only matters when a
-  /// triangle keeps less than about 1e-5 of its share, just above the collapse floor (+inf as it
-  /// collapses or folds); a heavier one holds thin limbs back (armadillo: 12.4° mean angle error at
-  /// 1e-6 against 6.5° at 1e-10, both certified).
+  /// similarity whatever the scale) plus a collapse barrier: collapse_barrier_weight·A·(A/S)², which
+  /// only matters when a triangle keeps less than about 1e-5 of its share (at the default weight), or
+  /// with collapse_threshold set, one that acts only below that share (+inf as it collapses or folds).
+  /// map_to_sphere runs the first, then the second with threshold 2e-6 (armadillo: 6.49° mean angle
+  /// error after the first, 4.87° after the second, both certified).
   kConformal,
 };
 
