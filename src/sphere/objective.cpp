@@ -56,7 +56,8 @@ constexpr double kAreaGoalOctantRms = 1.5;
 
 bool area_goal_met(const Mesh& mesh, const Finished& finished) {
   double total = 0;
-  for (const auto& t : mesh.triangles) total += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+  for (const auto& t : mesh.triangles)
+    total += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
   if (!(total > 0)) return true;
   double log_sum = 0;
   std::size_t counted = 0;

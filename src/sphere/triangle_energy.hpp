@@ -42,7 +42,8 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
 /// The second term of an energy: its weight and, for kConformal, the ratio S/A below which its collapse
 /// barrier acts (0: the power law weight·A·(A/S)² everywhere; see SphereOptimizeOptions).
 struct SecondTerm {
-  SecondTerm(double weight_, double threshold_ = 0) : weight(weight_), threshold(threshold_) {}  // NOLINT: from a weight
+  SecondTerm(double weight_, double threshold_ = 0)
+      : weight(weight_), threshold(threshold_) {}  // NOLINT: from a weight
   double weight;
   double threshold;
 };

@@ -97,8 +97,8 @@ TEST(ObjectiveEnergy, MinimaAndBarriers) {
   const Vec3 b2 = unit(0.001, 0, 1), c2 = unit(0.0005, 0.0005 * std::sqrt(3.0), 1);
   EXPECT_NEAR(detail::conformal(rest, kCollapseBarrierWeight, a, b, c), 2 * area, 1e-4 * area);
   const double small = detail::half_det(a, b2, c2);
-  EXPECT_NEAR(detail::conformal(rest, kCollapseBarrierWeight, a, b2, c2), 2 * area + kCollapseBarrierWeight * area * std::pow(area / small, 2),
-              1e-3 * area);
+  EXPECT_NEAR(detail::conformal(rest, kCollapseBarrierWeight, a, b2, c2),
+              2 * area + kCollapseBarrierWeight * area * std::pow(area / small, 2), 1e-3 * area);
   // A sheared image of the same area costs more.
   const Vec3 sheared = unit(0.015, 0.005 * std::sqrt(3.0), 1);
   EXPECT_GT(detail::conformal(rest, kCollapseBarrierWeight, a, b, sheared), 2.1 * area);
