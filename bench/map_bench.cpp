@@ -84,6 +84,17 @@ void run(benchmark::State& state, spheremap::Solver solver, bool perturbed = fal
 void BM_MapDirect(benchmark::State& state) { run(state, spheremap::Solver::kDirect); }
 void BM_MapDirectPerturbed(benchmark::State& state) { run(state, spheremap::Solver::kDirect, true); }
 
+// Times map_to_sphere with the default options on a prepared mesh; counts its vertices, certification and
+// re-weighting rounds. Returns the last map.
+spheremap::SphereMap map_with_defaults(benchmark::State& state, const spheremap::Mesh& mesh) {
+  spheremap::SphereMap map;
+  for (auto _ : state) map = spheremap::map_to_sphere(mesh);
+  state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
+  state.counters["certified"] = map.certificate.certified() ? 1 : 0;
+  state.counters["rounds"] = map.diagnostics.repair.reweighting_rounds;
+  return map;
+}
+
 // map_to_sphere with the default options on ../shared/data/meshes/libigl_armadillo.obj (43,243 vertices;
 // issue 26: FLASH 0.97 s), prepared outside the timing.
 void BM_MapArmadillo(benchmark::State& state) {
@@ -92,11 +103,7 @@ void BM_MapArmadillo(benchmark::State& state) {
     state.SkipWithError("../shared/data not found");
     return;
   }
-  spheremap::SphereMap map;
-  for (auto _ : state) map = spheremap::map_to_sphere(*mesh);
-  state.counters["vertices"] = static_cast<double>(mesh->vertex_count());
-  state.counters["certified"] = map.certificate.certified() ? 1 : 0;
-  state.counters["rounds"] = map.diagnostics.repair.reweighting_rounds;
+  const auto map = map_with_defaults(state, *mesh);
   state.SetLabel(to_string(map.diagnostics.solve.elimination_order));
 }
 void BM_MapGaussSeidel(benchmark::State& state) { run(state, spheremap::Solver::kGaussSeidel); }
@@ -124,11 +131,7 @@ void BM_MapMolecular(benchmark::State& state) {
     state.SkipWithError("../shared/data not found");
     return;
   }
-  spheremap::SphereMap map;
-  for (auto _ : state) map = spheremap::map_to_sphere(*mesh);
-  state.counters["vertices"] = static_cast<double>(mesh->vertex_count());
-  state.counters["certified"] = map.certificate.certified() ? 1 : 0;
-  state.counters["rounds"] = map.diagnostics.repair.reweighting_rounds;
+  const auto map = map_with_defaults(state, *mesh);
   state.SetLabel(std::string(kStructures[state.range(0)]) + " " + to_string(map.diagnostics.solve.elimination_order));
 }
 
