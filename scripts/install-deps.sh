@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
           libeigen3-dev libsuitesparse-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-          gemmi-dev tao-pegtl-dev zlib1g-dev libpng-dev
+          gemmi-dev tao-pegtl-dev zlib1g-dev libpng-dev libdeflate-dev
           libopenblas0-serial pymol-data libgtest-dev libgmock-dev libbenchmark-dev
           libstb-dev pdb2pqr apbs
           pymol python3-meshio python3-open3d  # the tests that PyMOL, meshio and Open3D read the outputs

@@ -1,11 +1,12 @@
 // Packing the viewer's data: typed arrays in one blob, texts in a JSON manifest (see viewer_payload.hpp).
 #include "viewer_payload.hpp"
 
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include <bit>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -127,14 +128,17 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
   return {manifest.dump(), out.take()};
 }
 
-std::string deflate_zlib(const std::string& bytes) {
-  uLongf size = compressBound(static_cast<uLong>(bytes.size()));
-  std::string out(size, '\0');
-  const int status =
-      compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(bytes.data()),
-                static_cast<uLong>(bytes.size()), Z_BEST_SPEED);
-  if (status != Z_OK)
-    throw std::runtime_error("zlib could not compress the viewer's data (status " + std::to_string(status) + ")");
+std::string deflate_zlib(std::string_view bytes, int level) {
+  if (level < 1 || level > 12)
+    throw std::invalid_argument("deflate_zlib: level " + std::to_string(level) + " is outside 1..12");
+  const std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
+      libdeflate_alloc_compressor(level), libdeflate_free_compressor);
+  if (compressor == nullptr) throw std::runtime_error("libdeflate could not allocate a compressor (out of memory?)");
+  std::string out(libdeflate_zlib_compress_bound(compressor.get(), bytes.size()), '\0');
+  const std::size_t size =
+      libdeflate_zlib_compress(compressor.get(), bytes.data(), bytes.size(), out.data(), out.size());
+  // The buffer has the bound's size, so 0 (too small) means libdeflate broke its own contract.
+  if (size == 0) throw std::runtime_error("libdeflate could not compress " + std::to_string(bytes.size()) + " bytes");
   out.resize(size);
   return out;
 }
