@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #pragma GCC diagnostic pop
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -33,29 +34,25 @@ Eigen::Matrix4d right_multiplication(const Vec3& p) {
   return m;
 }
 
-}  // namespace
-
-Superposition superpose_sphere_on_surface(const std::vector<Vec3>& surface_points,
-                                          const std::vector<Vec3>& sphere_points) {
-  if (surface_points.size() != sphere_points.size() || surface_points.size() < 3)
-    throw std::invalid_argument("superpose_sphere_on_surface: needs two equally long lists of at least 3 points, got " +
-                                std::to_string(surface_points.size()) + " and " + std::to_string(sphere_points.size()));
+// The superposition computed on the surface points divided by `unit` (scale and rmsd given back in the
+// surface's units): unit 1 for ordinary surfaces; larger where squares of the coordinates overflow.
+Superposition superpose_in_units(const std::vector<Vec3>& surface_points, const std::vector<Vec3>& sphere_points,
+                                 double unit) {
   const auto n = static_cast<double>(surface_points.size());
-
   Superposition result;
-  for (const auto& p : surface_points) result.centroid = result.centroid + p;
+  for (const auto& p : surface_points) result.centroid = result.centroid + (1 / unit) * p;
   result.centroid = (1 / n) * result.centroid;
   double squared_spread = 0;
-  for (const auto& p : surface_points) squared_spread += squared_distance(p, result.centroid);
-  result.scale = std::sqrt(squared_spread / n);
+  for (const auto& p : surface_points) squared_spread += squared_distance((1 / unit) * p, result.centroid);
+  const double scale = std::sqrt(squared_spread / n);
 
   // Kearsley 1989: for a unit quaternion q with R x = q x q̄, |R x - y| = |q x - y q| =
   // |(right(x) - left(y)) q|, so Σ|R x_i - y_i|² = qᵀ M q with M = Σ AᵢᵀAᵢ, and the best rotation is
   // the eigenvector of M's smallest eigenvalue (which equals the minimal sum of squared residuals).
   Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
   for (std::size_t i = 0; i < surface_points.size(); ++i) {
-    const Vec3 x = result.scale * sphere_points[i];
-    const Vec3 y = surface_points[i] - result.centroid;
+    const Vec3 x = scale * sphere_points[i];
+    const Vec3 y = (1 / unit) * surface_points[i] - result.centroid;
     const Eigen::Matrix4d a = right_multiplication(x) - left_multiplication(y);
     m += a.transpose() * a;
   }
@@ -68,9 +65,34 @@ Superposition superpose_sphere_on_surface(const std::vector<Vec3>& surface_point
 
   double squared_residual = 0;
   for (std::size_t i = 0; i < surface_points.size(); ++i)
-    squared_residual +=
-        squared_distance(result.scale * rotate(result.rotation, sphere_points[i]), surface_points[i] - result.centroid);
-  result.rmsd = std::sqrt(squared_residual / n);
+    squared_residual += squared_distance(scale * rotate(result.rotation, sphere_points[i]),
+                                         (1 / unit) * surface_points[i] - result.centroid);
+  result.rmsd = unit * std::sqrt(squared_residual / n);
+  result.scale = unit * scale;
+  result.centroid = unit * result.centroid;
+  return result;
+}
+
+bool finite(const Superposition& s) {
+  for (const double r : s.rotation)
+    if (!std::isfinite(r)) return false;
+  return std::isfinite(s.scale) && std::isfinite(s.rmsd);
+}
+
+}  // namespace
+
+Superposition superpose_sphere_on_surface(const std::vector<Vec3>& surface_points,
+                                          const std::vector<Vec3>& sphere_points) {
+  if (surface_points.size() != sphere_points.size() || surface_points.size() < 3)
+    throw std::invalid_argument("superpose_sphere_on_surface: needs two equally long lists of at least 3 points, got " +
+                                std::to_string(surface_points.size()) + " and " + std::to_string(sphere_points.size()));
+  Superposition result = superpose_in_units(surface_points, sphere_points, 1);
+  if (finite(result)) return result;
+  // Coordinates whose squares overflow (1e200): the same in units of the largest coordinate.
+  double largest = 0;
+  for (const auto& p : surface_points)
+    for (const double c : p) largest = std::max(largest, std::abs(c));
+  if (largest > 0 && std::isfinite(largest)) result = superpose_in_units(surface_points, sphere_points, largest);
   return result;
 }
 

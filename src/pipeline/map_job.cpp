@@ -330,6 +330,10 @@ std::string summary_text(const MapJobResult& result) {
                       to_string(map.diagnostics.construction.method), map.poles.north, map.poles.south,
                       map.poles.graph_distance, map.diagnostics.construction.split_edges.size(),
                       to_string(map.diagnostics.solve.solver));
+  if (const auto& solve = map.diagnostics.solve; solve.singular_systems > 0)
+    text += fmt::format("  warning: {} linear system(s) singular (extreme geometry): {}\n", solve.singular_systems,
+                        solve.uniform_weights_instead ? "the map was made with uniform weights instead"
+                                                      : "the re-weighting rounds that met them were rejected");
   text += fmt::format(
       "  plain algorithm: {} folded, {} collapsed; repair: {} re-weighting rounds, {} untangling "
       "moves\n",

@@ -306,7 +306,12 @@ nlohmann::json map_json(const SphereMap& map) {
                          {"superposition_rotation", std::vector<double>(r.begin(), r.end())},
                          {"superposition_rmsd", map.superposition.rmsd},
                          {"superposition_scale", map.superposition.scale}};
-  // Only maps that needed the fallback carry its report: every other report stays as it was.
+  // Only maps that met a singular system carry these keys, as only maps that needed the fallback carry
+  // its report: every other report stays as it was.
+  if (solve.singular_systems > 0) {
+    json["singular_systems"] = solve.singular_systems;
+    json["uniform_weights_instead"] = solve.uniform_weights_instead;
+  }
   if (map.diagnostics.fallback.ran) json["fallback"] = fallback_json(map.diagnostics.fallback);
   if (map.diagnostics.objective.objective != MapObjective::kPaper)
     json["objective"] = objective_json(map.diagnostics.objective);

@@ -669,7 +669,7 @@ SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   const SolverSection section;  // the factorization and the solve
   lu.compute(matrix);
-  if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU factorization failed (singular system)");
+  if (lu.info() != Eigen::Success) throw SingularSystem("the sparse LU factorization failed (singular system)");
   const Eigen::VectorXd solution = lu.solve(rhs);
   if (lu.info() != Eigen::Success) throw std::runtime_error("the sparse LU solve failed");
   stats.solver = LinearSolver::kUmfpackLu;

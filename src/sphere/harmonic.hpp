@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "spheremap/sphere/map.hpp"
@@ -38,6 +39,15 @@ struct SolveStats {
   bool converged = true;
 };
 
+/// A harmonic system that the sparse LU factorization finds singular: mean-value or cotangent weights
+/// that cancel or underflow on extreme geometry (coordinates of 1e61 beside ones of 1). The callers
+/// fall back to uniform weights (plain map) or reject the round (re-weighting); it never escapes a map.
+struct SingularSystem : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Solves `problem` for its free vertices into x (fixed ones keep their values). Throws SingularSystem
+/// when the LU factorization fails, std::runtime_error when CHOLMOD or the LU solve fails.
 SolveStats solve_harmonic(const HarmonicProblem& problem, std::vector<double>& x, Solver solver, double tolerance,
                           std::int64_t max_sweeps);
 

@@ -168,6 +168,8 @@ std::vector<Vec3> map_refined(const Mesh& mesh, const VertexRings& rings, const 
   std::vector<Vec3> sphere(n);
   for (std::int32_t v = 0; v < n; ++v) sphere[v] = rotate(undo, refined_map.sphere[v]);
   solve.solver = refined_map.diagnostics.solve.solver;
+  solve.singular_systems = refined_map.diagnostics.solve.singular_systems;
+  solve.uniform_weights_instead = refined_map.diagnostics.solve.uniform_weights_instead;
   construction.theta0 = refined_map.diagnostics.construction.theta0;
   construction.mercator_c = refined_map.diagnostics.construction.mercator_c;
   return sphere;
@@ -210,13 +212,25 @@ PlainMap map_poles_and_rings(WorkingMesh& work, std::int32_t input_vertices, con
   timer.lap("rings");
   // z and φ of the plain map from one analysis (φ's meridian as decoupled rows); re-weighting
   // factorizes in the same order (its systems have the same unknowns).
-  std::unique_ptr<detail::ReusableCholesky> factor;
-  if (options.solver == Solver::kDirect && plain.weights.symmetric) {
-    factor = detail::plain_map_factor(work, order);
-    solve.elimination_order = order.chosen ? order.chosen->method : FillReducingOrder::kGeometric;
+  const auto solve_plain = [&] {
+    std::unique_ptr<detail::ReusableCholesky> factor;
+    if (options.solver == Solver::kDirect && plain.weights.symmetric) {
+      factor = detail::plain_map_factor(work, order);
+      solve.elimination_order = order.chosen ? order.chosen->method : FillReducingOrder::kGeometric;
+    }
+    plain.planar = detail::solve_planar(work, north, south, plain.weights, options, factor.get());
+  };
+  try {
+    solve_plain();
+  } catch (const detail::SingularSystem&) {
+    // Uniform weights are positive and symmetric: with the poles and rings fixed, their system on a
+    // connected mesh is positive definite, never singular. Re-weighting then starts from them.
+    if (options.weights == Weights::kUniform) throw;
+    ++solve.singular_systems;
+    solve.uniform_weights_instead = true;
+    plain.weights = detail::compute_weights(work.rings, work.positions, Weights::kUniform);
+    solve_plain();
   }
-  plain.planar = detail::solve_planar(work, north, south, plain.weights, options, factor.get());
-  factor.reset();
   solve.solver = plain.planar.z_stats.solver;
   solve.gauss_seidel_sweeps = plain.planar.z_stats.sweeps + plain.planar.phi_stats.sweeps;
   solve.gauss_seidel_converged = plain.planar.z_stats.converged && plain.planar.phi_stats.converged;
@@ -301,6 +315,7 @@ SphereMap map_to_sphere(const Mesh& mesh, const MapOptions& options) {
     finished = std::move(outcome.finished);
     repair.reweighting_rounds = outcome.rounds;
     repair.equalizing_rounds = outcome.equalizing_rounds;
+    diagnostics.solve.singular_systems += outcome.singular_systems;
     diagnostics.solve.solver = plain.planar.z_stats.solver;
     timer.lap("reweight");
   }

@@ -113,8 +113,10 @@ class GainedMaps {
         split_(work.triangles.size() != mesh.triangles.size()),
         work_areas_(split_ ? triangle_areas(work.positions, work.triangles) : TriangleAreas{}) {}
 
-  // The map for `log_gain`; `best` is the best map so far, whose meridian is kept while it serves.
-  Candidate solve(const std::vector<double>& log_gain, const PlanarCoordinates& best, int round) {
+  // The map for `log_gain`; `best` is the best map so far, whose meridian is kept while it serves. None
+  // when the sparse LU finds the system singular (gains and extreme geometry together): the caller
+  // rejects that round like any other that does no better.
+  std::optional<Candidate> solve(const std::vector<double>& log_gain, const PlanarCoordinates& best, int round) {
     const auto count = work_.rings.vertex_count();
     for (std::int32_t v = 0; v < count; ++v) gain_[v] = std::exp(log_gain[v]);
     for (std::int32_t v = 0; v < count; ++v) {
@@ -130,7 +132,11 @@ class GainedMaps {
       if (!factor_ || factor_->last() != interior) factor_ = make_factor(work_, order_, interior);
     }
     Candidate candidate;
-    candidate.planar = solve_planar(work_, north_, south_, weights_, options_, factor_.get(), &best, round);
+    try {
+      candidate.planar = solve_planar(work_, north_, south_, weights_, options_, factor_.get(), &best, round);
+    } catch (const SingularSystem&) {
+      return std::nullopt;
+    }
     const auto input_vertices = static_cast<std::int32_t>(mesh_.positions.size());
     candidate.sphere = to_sphere(candidate.planar, north_, south_, mercator_c_, input_vertices);
     candidate.certificate =
@@ -204,23 +210,25 @@ void reweight_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& work
     if (largest_step == 0) break;  // every vertex is above the target: what is left is for untangling
     // Only ratios of gains matter: the largest is 1, and none below e^-300 keeps every weight positive.
     for (auto& g : proposal) g = std::max(g - top, -300.0);
-    Candidate candidate = maps.solve(proposal, outcome.best.planar, round);
+    std::optional<Candidate> solved = maps.solve(proposal, outcome.best.planar, round);
     outcome.rounds = round;
+    if (!solved) ++outcome.singular_systems;
     // Kept if it has fewer bad triangles and its smallest area ratio is at most kReweightingDip times
     // lower, or as many bad triangles and a larger smallest ratio: a round that trades fewer bad
     // triangles for a much deeper collapse elsewhere is an overshoot.
-    const auto& c = candidate.certificate;
     const auto& b = outcome.best.certificate;
-    const auto bad = c.collapsed + c.folded, best_bad = b.collapsed + b.folded;
-    const bool accepted = (bad < best_bad && c.min_area_ratio >= b.min_area_ratio / kReweightingDip) ||
-                          (bad <= best_bad && c.min_area_ratio > b.min_area_ratio);
+    const auto best_bad = b.collapsed + b.folded;
+    const auto bad = solved ? solved->certificate.collapsed + solved->certificate.folded : best_bad;
+    const bool accepted =
+        solved && ((bad < best_bad && solved->certificate.min_area_ratio >= b.min_area_ratio / kReweightingDip) ||
+                   (bad <= best_bad && solved->certificate.min_area_ratio > b.min_area_ratio));
     if (!accepted) {
       max_step /= 4;
       if (++rejections >= kReweightingPatience) break;
       continue;
     }
     log_gain = proposal;
-    outcome.best = std::move(candidate);
+    outcome.best = std::move(*solved);
     outcome.finished.reset();
     ratio = maps.ratios_of(outcome.best);
     max_step = std::min(2 * max_step, kReweightingMaxStep);
@@ -257,7 +265,14 @@ void equalizing_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& wo
       mean_log += proposal[v] / count;
     }
     for (auto& g : proposal) g = std::clamp(g - mean_log, -300.0, 300.0);
-    Candidate candidate = maps.solve(proposal, outcome.best.planar, outcome.rounds + 1);
+    std::optional<Candidate> solved = maps.solve(proposal, outcome.best.planar, outcome.rounds + 1);
+    if (!solved) {
+      ++outcome.singular_systems;
+      step_limit = std::sqrt(step_limit);
+      if (++rejections >= kEqualizingPatience) break;
+      continue;
+    }
+    Candidate& candidate = *solved;
     // An equalizing round can fold a few chords on the sphere while the planar map stays one-to-one, and
     // push a few triangles that untangling left just above the collapse floor below it (then no round
     // would ever be kept on a large surface): such a round is judged by its untangled map.

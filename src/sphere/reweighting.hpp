@@ -28,6 +28,7 @@ struct ReweightingOutcome {
   int rounds = 0;
   int equalizing_rounds = 0;         // of `rounds`, those kept by the equalizing phase
   std::optional<Finished> finished;  // the best round finished (superposed, untangled, certified), if tried
+  int singular_systems = 0;          // rounds whose system the sparse LU found singular (rejected)
 };
 
 // Collapse: harmonic z and φ decay exponentially along pockets and limbs that lead to neither pole, so

@@ -135,6 +135,11 @@ struct SolveDiagnostics {
   std::int64_t gauss_seidel_sweeps = 0;
   bool gauss_seidel_converged = true;
   std::int64_t weight_fallback_rows = 0;  // vertices whose mean-value/cotangent weights were not finite
+  /// Systems the sparse LU found singular (extreme geometry under mean-value or cotangent weights): a
+  /// plain map's, then solved again with uniform weights (uniform_weights_instead), or a re-weighting
+  /// round's, then rejected.
+  int singular_systems = 0;
+  bool uniform_weights_instead = false;
 };
 
 /// What the repair (MapOptions::repair) did to the paper's algorithm's result.

@@ -1,0 +1,76 @@
+// Geometry at the edge of double precision still ends in a certified map, never an internal error
+// (FUZZING.md, finding 5): a sparse LU that finds a re-weighting round's system singular, and
+// coordinates whose squares overflow (1e300 beside 1) in the fallback's smoothing and the superposition.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "spheremap/geometry/superposition.hpp"
+#include "spheremap/geometry/vec.hpp"
+#include "spheremap/shapes/shapes.hpp"
+#include "spheremap/sphere/map.hpp"
+
+namespace spheremap {
+namespace {
+
+// The prepared mesh of fuzz/regressions/map/mean-value-singular-lu: a flat bipyramid (every y = 0) with
+// one apex 5.6e61 away and one 5.6e17 away. Its mean-value weights span about 1e-122 to 1e61.
+Mesh far_apex_bipyramid() {
+  Mesh mesh;
+  mesh.positions = {{1, 0, 0}, {-1.4, 0, 0}, {-1, 0, 5.5555555555555559e61}, {5, 0, 0}, {-1, 0, 5.5555555555555552e17}};
+  mesh.triangles = {{0, 2, 1}, {3, 1, 4}, {3, 0, 1}, {2, 0, 4}, {1, 2, 4}, {0, 3, 4}};
+  return mesh;
+}
+
+TEST(SingularSystems, ARoundWhoseSystemIsSingularIsRejectedAndTheMapCertified) {
+  MapOptions options;
+  options.weights = Weights::kMeanValue;
+  const SphereMap map = map_to_sphere(far_apex_bipyramid(), options);  // threw "singular system" before
+  EXPECT_GE(map.diagnostics.solve.singular_systems, 1) << "the mesh no longer reaches a singular system";
+  EXPECT_FALSE(map.diagnostics.solve.uniform_weights_instead);
+  EXPECT_TRUE(map.certificate.certified())
+      << map.certificate.folded << " folded, " << map.certificate.collapsed << " collapsed";
+}
+
+TEST(SingularSystems, UniformWeightsMeetNone) {
+  const SphereMap map = map_to_sphere(far_apex_bipyramid());
+  EXPECT_EQ(map.diagnostics.solve.singular_systems, 0);
+  EXPECT_TRUE(map.certificate.certified());
+}
+
+// A cube with one vertex moved to z = 1e300: areas overflow, so the plain map is not certified and the
+// fallback's smoothing has no finite energy; the fallback's insertion alone must still certify, and the
+// superposition must stay finite.
+TEST(ExtremeGeometry, AVertexAt1e300StillMapsCertified) {
+  for (const auto weights : {Weights::kUniform, Weights::kMeanValue, Weights::kCotangent}) {
+    Mesh mesh = make_subdivided_cube(4);
+    mesh.positions[30][2] = 1e300;
+    MapOptions options;
+    options.weights = weights;
+    options.poles = std::make_pair(0, static_cast<std::int32_t>(mesh.positions.size()) - 1);
+    const SphereMap map = map_to_sphere(mesh, options);
+    EXPECT_TRUE(map.certificate.certified()) << static_cast<int>(weights);
+    EXPECT_TRUE(std::isfinite(map.superposition.rmsd) && std::isfinite(map.superposition.scale));
+    for (const auto& p : map.sphere) ASSERT_NEAR(norm(p), 1.0, 1e-12);
+  }
+}
+
+// The superposition of points whose squares overflow equals that of the same points scaled down.
+TEST(Superposition, CoordinatesWhoseSquaresOverflowGiveTheScaledDownRotation) {
+  const Mesh cube = make_subdivided_cube(2);
+  std::vector<Vec3> sphere, small, huge;
+  for (const auto& p : cube.positions) {
+    sphere.push_back((1 / norm(p)) * p);
+    const Vec3 q{p[0] + 0.3 * p[1], 2 * p[1], p[2] - 0.2 * p[0]};  // not a rotation of the sphere
+    small.push_back(q);
+    huge.push_back(1e300 * q);
+  }
+  const Superposition a = superpose_sphere_on_surface(small, sphere);
+  const Superposition b = superpose_sphere_on_surface(huge, sphere);
+  for (int k = 0; k < 9; ++k) EXPECT_NEAR(a.rotation[k], b.rotation[k], 1e-12) << k;
+  EXPECT_NEAR(b.scale / 1e300, a.scale, 1e-12 * a.scale);
+  EXPECT_NEAR(b.rmsd / 1e300, a.rmsd, 1e-12 * a.rmsd);
+}
+
+}  // namespace
+}  // namespace spheremap
