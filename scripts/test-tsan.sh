@@ -2,7 +2,7 @@
 # ThreadSanitizer on the maps made from several threads at once (docs/library.md, "Thread safety"): the
 # library built with -fsanitize=thread into ./build-tsan, tests/sphere/threads_test.cpp compiled against it
 # (LongThreads: 3 meshes x 4 threads x 50 rounds; DataThreads: a structure's whole job, if ../shared/data is
-# there). Any report fails the run (exit 66). About 3 minutes of build and 3 of run on 2 cores.
+# there). Any report fails the run (exit 66). About 5 minutes in all on 2 cores (2026-11-28).
 # OpenBLAS, CHOLMOD/UMFPACK and libgomp are not instrumented: TSan sees races in spheremap's own code only
 # (the OpenBLAS race behind SolverSection was found with helgrind and a shim: CONTRIBUTING.md, "Threads").
 set -euo pipefail
