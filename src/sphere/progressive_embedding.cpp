@@ -273,12 +273,10 @@ SphereOptimizeReport optimize_level(const Mesh& mesh, const std::vector<Triangle
   std::vector<Triangle> local(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) local[t][k] = index.local[triangles[t][k]];
-  // Rest triangles whose area overflows or underflows (coordinates of 1e200 beside ones of 1) give no
-  // finite energy to descend: such a level keeps the points insertion gave it, which are a valid map.
+  // Rest triangles whose area overflows (coordinates of 1e200) give no finite energy to descend: such a
+  // level keeps the points insertion gave it, which are a valid map.
   for (const auto& t : local)
-    if (const double area = norm(cross(rest[t[1]] - rest[t[0]], rest[t[2]] - rest[t[0]]));
-        !(std::isfinite(area) && area > 0))
-      return {};
+    if (!std::isfinite(triangle_area(rest[t[0]], rest[t[1]], rest[t[2]]))) return {};
   options.max_iterations = iterations;
   const auto report = optimize_on_sphere(rest, local, points, fixed, options);
   for (std::size_t i = 0; i < count; ++i) sphere[index.vertices[i]] = points[i];

@@ -177,6 +177,15 @@ class GainedMaps {
   TriangleAreas work_areas_;
 };
 
+// Whether a re-weighting round's map `c` is kept over the best so far, `b`: fewer bad triangles and a
+// smallest area ratio at most kReweightingDip times lower, or as many bad triangles and a larger smallest
+// ratio (a round that trades fewer bad triangles for a much deeper collapse elsewhere is an overshoot).
+bool round_improves(const Certificate& c, const Certificate& b) {
+  const auto bad = c.collapsed + c.folded, best_bad = b.collapsed + b.folded;
+  return (bad < best_bad && c.min_area_ratio >= b.min_area_ratio / kReweightingDip) ||
+         (bad <= best_bad && c.min_area_ratio > b.min_area_ratio);
+}
+
 // The re-weighting rounds, from the plain map in `outcome` and log_gain = 0: until the best round is
 // certified after untangling, no vertex is below the target, or patience runs out.
 void reweight_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& work, const MapOptions& options,
@@ -213,16 +222,7 @@ void reweight_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& work
     std::optional<Candidate> solved = maps.solve(proposal, outcome.best.planar, round);
     outcome.rounds = round;
     if (!solved) ++outcome.singular_systems;
-    // Kept if it has fewer bad triangles and its smallest area ratio is at most kReweightingDip times
-    // lower, or as many bad triangles and a larger smallest ratio: a round that trades fewer bad
-    // triangles for a much deeper collapse elsewhere is an overshoot.
-    const auto& b = outcome.best.certificate;
-    const auto best_bad = b.collapsed + b.folded;
-    const auto bad = solved ? solved->certificate.collapsed + solved->certificate.folded : best_bad;
-    const bool accepted =
-        solved && ((bad < best_bad && solved->certificate.min_area_ratio >= b.min_area_ratio / kReweightingDip) ||
-                   (bad <= best_bad && solved->certificate.min_area_ratio > b.min_area_ratio));
-    if (!accepted) {
+    if (!solved || !round_improves(solved->certificate, outcome.best.certificate)) {
       max_step /= 4;
       if (++rejections >= kReweightingPatience) break;
       continue;
@@ -234,7 +234,7 @@ void reweight_rounds(GainedMaps& maps, const Mesh& mesh, const WorkingMesh& work
     max_step = std::min(2 * max_step, kReweightingMaxStep);
     rejections = 0;
     // Few bad triangles left: untangling may certify this round, far more cheaply than another round.
-    if (bad <= kUntanglingAttempt) {
+    if (outcome.best.certificate.collapsed + outcome.best.certificate.folded <= kUntanglingAttempt) {
       outcome.finished = finish_map(mesh, input, outcome.best.sphere, options);
       if (outcome.finished->certificate.certified()) break;
     }

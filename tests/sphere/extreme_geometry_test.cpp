@@ -1,5 +1,5 @@
 // Geometry at the edge of double precision still ends in a certified map, never an internal error
-// (FUZZING.md, finding 5): a sparse LU that finds a re-weighting round's system singular, and
+// (FUZZING.md, findings 5 and 6): a sparse LU that finds a re-weighting round's system singular, and
 // coordinates whose squares overflow (1e300 beside 1) in the fallback's smoothing and the superposition.
 #include <gtest/gtest.h>
 
@@ -8,6 +8,8 @@
 #include "spheremap/geometry/superposition.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/shapes/shapes.hpp"
+#include "spheremap/sphere/certify.hpp"
+#include "spheremap/sphere/fallback.hpp"
 #include "spheremap/sphere/map.hpp"
 
 namespace spheremap {
@@ -38,13 +40,17 @@ TEST(SingularSystems, UniformWeightsMeetNone) {
   EXPECT_TRUE(map.certificate.certified());
 }
 
-// A cube with one vertex moved to z = 1e300: areas overflow, so the plain map is not certified and the
-// fallback's smoothing has no finite energy; the fallback's insertion alone must still certify, and the
-// superposition must stay finite.
+// A cube with one vertex moved to z = 1e300: its areas overflow.
+Mesh cube_with_a_vertex_at_1e300() {
+  Mesh mesh = make_subdivided_cube(4);
+  mesh.positions[30][2] = 1e300;
+  return mesh;
+}
+
+// The map, under every weighting; the superposition must stay finite (it was NaN, and the map with it).
 TEST(ExtremeGeometry, AVertexAt1e300StillMapsCertified) {
   for (const auto weights : {Weights::kUniform, Weights::kMeanValue, Weights::kCotangent}) {
-    Mesh mesh = make_subdivided_cube(4);
-    mesh.positions[30][2] = 1e300;
+    const Mesh mesh = cube_with_a_vertex_at_1e300();
     MapOptions options;
     options.weights = weights;
     options.poles = std::make_pair(0, static_cast<std::int32_t>(mesh.positions.size()) - 1);
@@ -53,6 +59,16 @@ TEST(ExtremeGeometry, AVertexAt1e300StillMapsCertified) {
     EXPECT_TRUE(std::isfinite(map.superposition.rmsd) && std::isfinite(map.superposition.scale));
     for (const auto& p : map.sphere) ASSERT_NEAR(norm(p), 1.0, 1e-12);
   }
+}
+
+// The fallback itself: its smoothing has no finite energy there (it threw), so insertion alone must give
+// a valid map.
+TEST(ExtremeGeometry, TheFallbackMapsAVertexAt1e300) {
+  const Mesh mesh = cube_with_a_vertex_at_1e300();
+  FallbackReport report;
+  const auto sphere = fallback_map(mesh, 0, static_cast<std::int32_t>(mesh.positions.size()) - 1, report);
+  ASSERT_TRUE(report.embedding.valid);
+  EXPECT_TRUE(certify_sphere_map(mesh, sphere, MapOptions{}.collapse_floor).certified());
 }
 
 // The superposition of points whose squares overflow equals that of the same points scaled down.
