@@ -10,7 +10,8 @@ packages=(build-essential cmake ninja-build pkg-config
           pymol python3-meshio python3-open3d  # the tests that PyMOL, meshio and Open3D read the outputs
           libcairo2-dev libfontconfig-dev libfreetype-dev fonts-dejavu-core  # pictures (render/)
           proj-bin  # PROJ's `proj`, the projections' test oracle
-          chromium)  # headless Chromium for the viewer's browser test
+          chromium  # headless Chromium for the viewer's browser test
+          firefox-esr xvfb xauth libgl1-mesa-dri)  # Firefox's browser test, in Xvfb with Mesa's software GL
 # The viewer (index.html) is bundled at build time with npm packages (viewer/package-lock.json): Debian's
 # Node.js and npm only when no npm is on the PATH already (a newer Node.js from elsewhere is kept).
 command -v npm >/dev/null || packages+=(nodejs npm)

@@ -1,6 +1,7 @@
-// The viewer in a real browser: headless Chromium opens a generated index.html from file://, draws both
-// views, names the residue under the pointer on either view and marks the point on both, finds a residue,
-// and colours values by the same rule as the C++ scales. Skipped (visibly) when Chromium is absent.
+// The viewer in real browsers: headless Chromium, and Firefox in a window of Xvfb (headless Firefox has no
+// WebGL without a GPU), each open a generated index.html from file://, draw both views, name the residue
+// under the pointer on either view and mark the point on both, find a residue, and colour values by the same
+// rule as the C++ scales. Each test is skipped (visibly) when its browser is absent.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -21,6 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kChromium = "/usr/bin/chromium";
+constexpr const char* kFirefox = "/usr/bin/firefox-esr";
+constexpr const char* kXvfbRun = "/usr/bin/xvfb-run";
 
 std::string residue_label(const ViewerAtom& a) {
   return a.chain + ":" + a.residue_name + " " + std::to_string(a.residue_number) + a.insertion_code;
@@ -54,11 +57,10 @@ nlohmann::json colour_checks() {
   return checks;
 }
 
-TEST(ViewerBrowser, DrawsPicksAndSearchesInHeadlessChromium) {
-  if (!fs::exists(kChromium))
-    GTEST_SKIP() << "no Chromium at " << kChromium << ": the browser test needs Debian's chromium "
-                 << "(scripts/install-deps.sh installs it)";
-  const fs::path out = fs::path(SPHEREMAP_VIEWER_TEST_OUTPUT_DIR);
+// Writes a test map's index.html into SPHEREMAP_VIEWER_TEST_OUTPUT_DIR/<browser>/ and runs
+// viewer_browser_test.mjs on it in that browser; `prefix` goes before the node command (e.g. xvfb-run).
+void run_in_browser(const std::string& browser, const std::string& executable, const std::string& prefix) {
+  const fs::path out = fs::path(SPHEREMAP_VIEWER_TEST_OUTPUT_DIR) / browser;
   fs::create_directories(out);
   ViewerData data = testing_support::make_viewer_test_map(4, 120);
   data.title = "test map </script> \"quoted\" & 'single' \xc3\x85";  // escaping, seen from the browser
@@ -79,7 +81,8 @@ TEST(ViewerBrowser, DrawsPicksAndSearchesInHeadlessChromium) {
     in_residue += data.atoms[a].chain == searched.chain && data.atoms[a].residue_number == searched.residue_number;
   const nlohmann::json spec{
       {"html", (out / "index.html").string()},
-      {"chromium", kChromium},
+      {"browser", browser},
+      {"executable", executable},
       {"nodeModules", SPHEREMAP_VIEWER_NODE_MODULES},
       {"outputDir", out.string()},
       {"title", data.title},
@@ -89,7 +92,7 @@ TEST(ViewerBrowser, DrawsPicksAndSearchesInHeadlessChromium) {
       {"colourChecks", colour_checks()}};
   std::ofstream(out / "spec.json") << spec.dump(1);
 
-  const std::string command = std::string(SPHEREMAP_NODE_EXECUTABLE) + " " + SPHEREMAP_VIEWER_BROWSER_SCRIPT + " " +
+  const std::string command = prefix + SPHEREMAP_NODE_EXECUTABLE + " " + SPHEREMAP_VIEWER_BROWSER_SCRIPT + " " +
                               (out / "spec.json").string() + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
@@ -99,6 +102,20 @@ TEST(ViewerBrowser, DrawsPicksAndSearchesInHeadlessChromium) {
   const int status = pclose(pipe);
   std::cout << output;
   EXPECT_EQ(status, 0) << output;
+}
+
+TEST(ViewerBrowser, DrawsPicksAndSearchesInHeadlessChromium) {
+  if (!fs::exists(kChromium))
+    GTEST_SKIP() << "no Chromium at " << kChromium << ": the browser test needs Debian's chromium "
+                 << "(scripts/install-deps.sh installs it)";
+  run_in_browser("chromium", kChromium, "");
+}
+
+TEST(ViewerBrowser, DrawsPicksAndSearchesInFirefox) {
+  if (!fs::exists(kFirefox) || !fs::exists(kXvfbRun))
+    GTEST_SKIP() << "no Firefox at " << kFirefox << " or no " << kXvfbRun << ": the browser test needs Debian's "
+                 << "firefox-esr and xvfb (scripts/install-deps.sh installs them)";
+  run_in_browser("firefox", kFirefox, std::string(kXvfbRun) + " -a -s '-screen 0 1600x900x24' ");
 }
 
 }  // namespace
