@@ -147,8 +147,8 @@ struct ChildRun {
   std::string output;  // stdout and stderr
 };
 
-// The command under test: SPHEREMAP_CLI if set (scripts/test-sanitizers.sh points it at the sanitizer
-// build's), else the one built with the tests.
+// The command under test: SPHEREMAP_CLI if set (to try another build's command on the table), else the one
+// built with the tests (in build-asan/, scripts/test-sanitizers.sh, the one built with the sanitizers).
 std::string cli_path() {
   const char* path = std::getenv("SPHEREMAP_CLI");
   return path != nullptr && *path != '\0' ? path : SPHEREMAP_CLI_PATH;
