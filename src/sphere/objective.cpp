@@ -52,6 +52,7 @@ std::vector<Stage> stages_of(SphereEnergy energy) {
 // its share of the sphere over its share of the surface; octants of the globe (the superposed map) by
 // the sign of each corner sum's coordinates, weighted by surface area.
 constexpr double kAreaGoalLogRatio = 0.15;
+constexpr double kAreaRelativeTolerance = 1e-4;
 constexpr double kAreaGoalOctantRms = 1.5;
 
 bool area_goal_met(const Mesh& mesh, const Finished& finished) {
@@ -98,6 +99,10 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
   fixed[north] = fixed[south] = 1;
   SphereOptimizeOptions optimize;
   optimize.energy = report.energy;
+  // The area energy's last steps before the default tolerance (1e-6) each lowered it by a few millionths
+  // and left the area figures as they were (bunny: 45 of its 59 steps, mean |ln area ratio| 0.0813 ->
+  // 0.0810): its stages stop once a step gains less than 1e-4 of the energy.
+  if (report.energy == SphereEnergy::kLogAreaRatio) optimize.relative_tolerance = kAreaRelativeTolerance;
   MapOptions plain = options;
   plain.repair = false;  // an optimized map that does not certify is dropped, not untangled
   const auto stages = stages_of(report.energy);

@@ -275,7 +275,9 @@ class Optimizer {
     const auto& tri = triangles_[t];
     detail::Vector9 g;
     detail::Matrix9 h;
-    detail::triangle_energy(options_.energy, term_, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g, h);
+    detail::triangle_energy(options_.energy, term_, rest_[t], sphere_[tri[0]], sphere_[tri[1]], sphere_[tri[2]], g, h,
+                            !exact);
+    // (!exact: the area energy's model Hessian, its area term at least as curved as its secant.)
     Eigen::Matrix<double, 3, 2> basis[3];
     for (int k = 0; k < 3; ++k) {
       const auto v = tri[k];

@@ -127,15 +127,23 @@ double dirichlet_n(const RestTriangle& rest, const Vec3& a, const Vec3& b, const
                 rest.cot[2] * squared_distance(a, b));
 }
 
-// f = A ln²(S/A) + w A N/S.
-Partials log_area_partials(double w, double area, double n, double s) {
+// f = A ln²(S/A) + w A N/S. With `secant`, the area term's ∂²/∂S² is raised to its secant curvature
+// f_S/(S - A) where that is larger: the parabola in S through the term's slope with its minimum at S = A.
+// The term is concave in S above S = eA, and its exact curvature there (projected to 0 by the optimizer)
+// makes the Newton step of a triangle far too large on the sphere as long as the curvature of its shape
+// term alone: on the paper's maps (areas 10-fold off on average) the first steps were then cut to a
+// few thousandths, tens of them. The secant asks each triangle for its target area, as Newton's step in
+// ln S would.
+Partials log_area_partials(double w, double area, double n, double s, bool secant) {
   const double l = std::log(s / area);
+  double area_ss = 2 * area * (1 - l) / (s * s);
+  if (secant && s != area) area_ss = std::max(area_ss, 2 * area * l / (s * (s - area)));
   return {area * l * l + w * area * n / s,
           w * area / s,
           2 * area * l / s - w * area * n / (s * s),
           0,
           -w * area / (s * s),
-          2 * area * (1 - l) / (s * s) + 2 * w * area * n / (s * s * s)};
+          area_ss + 2 * w * area * n / (s * s * s)};
 }
 
 // f = A N/S + w A³/S², or with a threshold κ: f = A N/S + w A φ(S/(κA)), φ(x) = -(x-1)² ln x below
@@ -182,13 +190,13 @@ double symmetric_dirichlet(const RestTriangle& rest, const Vec3& a, const Vec3& 
 double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c) {
   const double s = half_det(a, b, c);
   if (!(s > 0)) return std::numeric_limits<double>::infinity();
-  return log_area_partials(weight, rest.area, dirichlet_n(rest, a, b, c), s).f;
+  return log_area_partials(weight, rest.area, dirichlet_n(rest, a, b, c), s, false).f;
 }
 
 double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
-                      Vector9& gradient, Matrix9& hessian) {
+                      Vector9& gradient, Matrix9& hessian, bool secant) {
   const ChordTerms t = chord_terms(rest, a, b, c);
-  return chain(t, log_area_partials(weight, rest.area, t.n, t.s), gradient, hessian);
+  return chain(t, log_area_partials(weight, rest.area, t.n, t.s, secant), gradient, hessian);
 }
 
 double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -214,10 +222,10 @@ double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle&
 }
 
 double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
-                       const Vec3& c, Vector9& gradient, Matrix9& hessian) {
+                       const Vec3& c, Vector9& gradient, Matrix9& hessian, bool secant) {
   switch (energy) {
     case SphereEnergy::kSymmetricDirichlet: return symmetric_dirichlet(rest, a, b, c, gradient, hessian);
-    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, term.weight, a, b, c, gradient, hessian);
+    case SphereEnergy::kLogAreaRatio: return log_area_ratio(rest, term.weight, a, b, c, gradient, hessian, secant);
     case SphereEnergy::kConformal: return conformal(rest, term, a, b, c, gradient, hessian);
   }
   return std::numeric_limits<double>::quiet_NaN();

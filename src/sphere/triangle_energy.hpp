@@ -50,20 +50,24 @@ struct SecondTerm {
 
 /// kLogAreaRatio and kConformal (optimize.hpp) with `weight`/`term` their second term (the shape term,
 /// the collapse barrier), with their gradient and Hessian in the second forms (precondition there:
-/// S > 0); the first forms give +inf if S <= 0.
+/// S > 0); the first forms give +inf if S <= 0. With `secant`, kLogAreaRatio's Hessian is a model, not
+/// the exact one: the area term's second derivative in S is at least its secant curvature
+/// 2A·ln(S/A)/(S(S - A)), whose 1-D Newton step goes to S = A (positive where the exact one is negative,
+/// S > eA).
 double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c);
 double log_area_ratio(const RestTriangle& rest, double weight, const Vec3& a, const Vec3& b, const Vec3& c,
-                      Vector9& gradient, Matrix9& hessian);
+                      Vector9& gradient, Matrix9& hessian, bool secant = false);
 double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c);
 double conformal(const RestTriangle& rest, SecondTerm term, const Vec3& a, const Vec3& b, const Vec3& c,
                  Vector9& gradient, Matrix9& hessian);
 
 /// The energy `energy` of one triangle (a new SphereEnergy gets its two functions here), `term` its
 /// second term (unused by kSymmetricDirichlet): +inf when the triangle is not positively oriented; the
-/// second form also gives the gradient and Hessian in R^9 (precondition: positively oriented).
+/// second form also gives the gradient and Hessian in R^9 (precondition: positively oriented; `secant`:
+/// kLogAreaRatio's model Hessian, see log_area_ratio).
 double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
                        const Vec3& c);
 double triangle_energy(SphereEnergy energy, SecondTerm term, const RestTriangle& rest, const Vec3& a, const Vec3& b,
-                       const Vec3& c, Vector9& gradient, Matrix9& hessian);
+                       const Vec3& c, Vector9& gradient, Matrix9& hessian, bool secant = false);
 
 }  // namespace spheremap::detail
