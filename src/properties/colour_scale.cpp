@@ -255,20 +255,6 @@ const ColourTable& colour_table(ScaleKind kind) {
   return viridis_table();
 }
 
-int colour_index(ScaleKind kind, const ValueRange& range, double value) {
-  if (std::isnan(value)) return -1;
-  if (kind == ScaleKind::categorical) {
-    const double k = std::round(value);
-    return k >= 0 && k < kColourTableSize ? static_cast<int>(k) : -1;
-  }
-  if (!(range.hi > range.lo)) return kColourTableSize / 2;
-  const double t = (value - range.lo) / (range.hi - range.lo);
-  // Compare before converting: t may be infinite or far outside the int range.
-  if (!(t > 0)) return 0;
-  if (t >= 1) return kColourTableSize - 1;
-  return std::min(static_cast<int>(t * kColourTableSize), kColourTableSize - 1);
-}
-
 Rgb8 colour_of(ScaleKind kind, const ValueRange& range, double value) {
   const int index = colour_index(kind, range, value);
   return index < 0 ? kMissingValueColour : colour_table(kind)[index];

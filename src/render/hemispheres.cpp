@@ -112,6 +112,10 @@ std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const s
                                                  std::vector<std::uint32_t>(static_cast<std::size_t>(width) * height));
   detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
     std::vector<std::array<double, 3>> sums(figures);  // r, g, b of each figure's pixel
+    // The triangle of the previous sample and what its samples share (most samples lie in their neighbour's).
+    std::int32_t current = -1;
+    render_detail::ScreenTriangle corners(screen[0], screen[0], screen[0]);
+    std::array<double, 3> corner_light{};
     for (auto y = static_cast<int>(first); y < last; ++y)
       for (int x = 0; x < width; ++x) {
         std::fill(sums.begin(), sums.end(), std::array<double, 3>{0, 0, 0});
@@ -120,15 +124,19 @@ std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const s
           for (int sx = x * ss; sx < (x + 1) * ss; ++sx) {
             const std::int32_t t = buffer.triangle[static_cast<std::size_t>(sy) * sw + sx];
             if (t < 0) continue;
-            const Triangle& tri = globe.triangles[t];
-            std::array<double, 3> w =
-                render_detail::screen_weights(screen[tri[0]], screen[tri[1]], screen[tri[2]], sx, sy);
+            if (t != current) {
+              const Triangle& tri = globe.triangles[t];
+              corners = render_detail::ScreenTriangle(screen[tri[0]], screen[tri[1]], screen[tri[2]]);
+              corner_light = {light[tri[0]], light[tri[1]], light[tri[2]]};
+              current = t;
+            }
+            std::array<double, 3> w = corners.weights(sx, sy);
             for (double& wk : w) wk = std::max(wk, 0.0);
             const double total = w[0] + w[1] + w[2];
             for (double& wk : w) wk = total > 0 ? wk / total : 1.0 / 3;
             const std::array<float, 3> weights{static_cast<float>(w[0]), static_cast<float>(w[1]),
                                                static_cast<float>(w[2])};
-            const double shade = w[0] * light[tri[0]] + w[1] * light[tri[1]] + w[2] * light[tri[2]];
+            const double shade = w[0] * corner_light[0] + w[1] * corner_light[1] + w[2] * corner_light[2];
             for (std::size_t f = 0; f < figures; ++f) {
               const Rgb8 colour = colours[f](t, weights);
               sums[f][0] += colour.r * shade, sums[f][1] += colour.g * shade, sums[f][2] += colour.b * shade;

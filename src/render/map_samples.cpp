@@ -39,11 +39,14 @@ MapSamples sample_map(const SphereLocator& locator, Projection projection, int w
   detail::parallel_ranges(height, 16, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
     for (auto row = static_cast<int>(first); row < last; ++row) {
       const RowUnprojection unproject_row(projection, plane_point(half, width, height, 0.5, row + 0.5).y);
+      std::int32_t previous = -1;  // the triangle of the pixel to the left, which most pixels share (per row: the
+                                   // result does not depend on how rows are split between threads)
       for (int column = 0; column < width; ++column) {
         const auto at = unproject_row(plane_point(half, width, height, column + 0.5, row + 0.5).x);
         if (!at) continue;
-        const SphereHit hit =
-            locate_on_sphere(locator, unproject_row.direction(at->longitude), kPi / 2 - at->latitude, at->longitude);
+        const SphereHit hit = locate_on_sphere(locator, unproject_row.direction(at->longitude), kPi / 2 - at->latitude,
+                                               at->longitude, previous);
+        previous = hit.triangle;
         const std::size_t i = static_cast<std::size_t>(row) * width + column;
         samples.triangle[i] = hit.triangle;
         samples.weights[i] = {static_cast<float>(hit.weights[0]), static_cast<float>(hit.weights[1]),

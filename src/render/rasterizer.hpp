@@ -33,13 +33,21 @@ inline double edge(const Vec3& a, const Vec3& b, double px, double py) {
   return (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
 }
 
-/// The barycentric weights of the sample centre (x + 0.5, y + 0.5) in screen triangle (a, b, c) (may be
-/// slightly outside [0, 1] on edges: clamp before use). Inline: the shading calls it for every sample.
-inline std::array<double, 3> screen_weights(const Vec3& a, const Vec3& b, const Vec3& c, double x, double y) {
-  const double px = x + 0.5, py = y + 0.5;
-  const double area = edge(a, b, c[0], c[1]);
-  if (area == 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  return {edge(b, c, px, py) / area, edge(c, a, px, py) / area, edge(a, b, px, py) / area};
-}
+/// A screen triangle (a, b, c) with its area computed once, for the weights of its many samples.
+struct ScreenTriangle {
+  const Vec3* a;
+  const Vec3* b;
+  const Vec3* c;
+  double area;  // edge(a, b, c)
+  ScreenTriangle(const Vec3& a_, const Vec3& b_, const Vec3& c_)
+      : a(&a_), b(&b_), c(&c_), area(edge(a_, b_, c_[0], c_[1])) {}
+  /// The barycentric weights of the sample centre (x + 0.5, y + 0.5) (may be slightly outside [0, 1] on
+  /// edges: clamp before use). Inline: the shading calls it for every sample.
+  [[nodiscard]] std::array<double, 3> weights(double x, double y) const {
+    const double px = x + 0.5, py = y + 0.5;
+    if (area == 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    return {edge(*b, *c, px, py) / area, edge(*c, *a, px, py) / area, edge(*a, *b, px, py) / area};
+  }
+};
 
 }  // namespace spheremap::render_detail

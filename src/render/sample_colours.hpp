@@ -37,7 +37,7 @@ class SampleColours {
  public:
   /// Preconditions: `property` belongs to `globe`; both outlive this.
   SampleColours(const Globe& globe, const SurfaceProperty& property, const ValueRange& range)
-      : globe_(&globe), property_(&property), range_(range) {
+      : globe_(&globe), property_(&property), range_(range), table_(&colour_table(property.info.scale)) {
     // value_at gives a categorical property's nearest vertex value (also when it is NaN).
     if (property.info.scale != ScaleKind::categorical) return;
     vertex_.reserve(property.values.size());
@@ -47,13 +47,16 @@ class SampleColours {
   /// colour_of(scale, range, value_at(globe, property, triangle, weights)). Precondition: triangle >= 0.
   [[nodiscard]] Rgb8 operator()(std::int32_t triangle, const std::array<float, 3>& weights) const {
     if (!vertex_.empty()) return vertex_[globe_->triangles[triangle][nearest_corner(weights)]];
-    return colour_of(property_->info.scale, range_, sample_value(*globe_, *property_, triangle, weights));
+    // colour_of with its table looked up once.
+    const int index = colour_index(property_->info.scale, range_, sample_value(*globe_, *property_, triangle, weights));
+    return index < 0 ? kMissingValueColour : (*table_)[index];
   }
 
  private:
   const Globe* globe_;
   const SurfaceProperty* property_;
   ValueRange range_;
+  const ColourTable* table_;
   std::vector<Rgb8> vertex_;  // categorical: the colour of each vertex's value; empty otherwise
 };
 

@@ -159,6 +159,8 @@ namespace {
 // A weight below this (of unit vectors: |weights| < 6) makes its triangle's score negative (not a denormal that
 // rounds to -0 when divided by the weights' sum).
 constexpr double kOutside = -1e-300;
+// How far inside a hinted triangle (its smallest weight over their sum) a point must be to take it unsearched.
+constexpr double kHintMargin = 1e-6;
 
 // The first candidate of `cell`, in index order, that contains `direction`, else the one it is least outside
 // (weights clamped).
@@ -215,6 +217,21 @@ SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction, double
   phi = std::fmod(phi, 2 * kPi);
   if (phi < 0) phi += 2 * kPi;
   return locate_in_cell(l, direction, cell_of(l, theta, phi));
+}
+
+SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction, double theta, double phi, std::int32_t hint) {
+  if (hint >= 0) {
+    // The weights as locate_in_cell computes them, so that the hit is the same to the bit.
+    const Vec3& d = direction;
+    const std::array<double, 9>& n = l.edge_normals[hint];
+    const double w0 = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    const double w1 = d[0] * n[3] + d[1] * n[4] + d[2] * n[5];
+    const double w2 = d[0] * n[6] + d[1] * n[7] + d[2] * n[8];
+    const double total = w0 + w1 + w2;
+    // Well inside (rounding moves a weight by about 1e-16 of the sum): no other triangle of a one-to-one map has it.
+    if (total > 0 && std::min({w0, w1, w2}) >= kHintMargin * total) return {hint, {w0 / total, w1 / total, w2 / total}};
+  }
+  return locate_on_sphere(l, direction, theta, phi);
 }
 
 }  // namespace spheremap

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -124,6 +125,40 @@ TEST(SphereLocator, FindsTheTriangleUnderRandomPointsPolesAndTheSeam) {
     EXPECT_NEAR(qu[1], p[1], 1e-9);
     EXPECT_NEAR(qu[2], p[2], 1e-9);
   }
+}
+
+TEST(SphereLocator, AHintChangesNothingOnAOneToOneMap) {
+  // Random points, the mesh's corners and edge midpoints (which several triangles contain: the hint must not
+  // win over the first of them), each hinted with every triangle that holds one of its candidates' corners.
+  const Mesh sphere = make_icosphere(3);
+  const SphereLocator locator = make_sphere_locator(sphere.positions, sphere.triangles);
+  std::mt19937 random(11);
+  std::normal_distribution<double> normal;
+  std::vector<Vec3> points(sphere.positions.begin(), sphere.positions.end());
+  for (const Triangle& t : sphere.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = sphere.positions[t[k]];
+      const Vec3& b = sphere.positions[t[(k + 1) % 3]];
+      points.push_back({a[0] + b[0], a[1] + b[1], a[2] + b[2]});
+    }
+  for (int k = 0; k < 2000; ++k) points.push_back({normal(random), normal(random), normal(random)});
+  int hinted = 0;
+  for (const Vec3& point : points) {
+    const Vec3 p = unit(point);
+    const double theta = std::acos(std::clamp(p[2], -1.0, 1.0)), phi = std::atan2(p[1], p[0]);
+    const SphereHit expected = locate_on_sphere(locator, point, theta, phi);
+    ASSERT_GE(expected.triangle, 0);
+    const Triangle& under = locator.triangles[expected.triangle];
+    for (std::int32_t hint = 0; hint < static_cast<std::int32_t>(locator.triangles.size()); ++hint) {
+      const Triangle& t = locator.triangles[hint];
+      if (std::find_first_of(t.begin(), t.end(), under.begin(), under.end()) == t.end()) continue;  // far away
+      const SphereHit hit = locate_on_sphere(locator, point, theta, phi, hint);
+      ASSERT_EQ(hit.triangle, expected.triangle) << "hint " << hint;
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(hit.weights[c], expected.weights[c]);
+      ++hinted;
+    }
+  }
+  EXPECT_GT(hinted, 20000);
 }
 
 TEST(SphereLocator, RefusesAnIndexOutOfRange) {

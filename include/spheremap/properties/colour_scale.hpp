@@ -3,7 +3,9 @@
 // to a table entry, so that a value gets the same colour everywhere.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -47,7 +49,20 @@ const ColourTable& colour_table(ScaleKind kind);
 /// a range with hi <= lo gives entry 128 for every value. Categorical: the value rounded to the nearest
 /// whole number, -1 if that is outside [0, 255]; `range` is not used. NaN gives -1 on every scale.
 /// The viewer's script applies the same rule (viewer/src/colour.js); keep them equal. Never throws.
-int colour_index(ScaleKind kind, const ValueRange& range, double value);
+/// Inline: the pictures look up millions of samples.
+inline int colour_index(ScaleKind kind, const ValueRange& range, double value) {
+  if (std::isnan(value)) return -1;
+  if (kind == ScaleKind::categorical) {
+    const double k = std::round(value);
+    return k >= 0 && k < kColourTableSize ? static_cast<int>(k) : -1;
+  }
+  if (!(range.hi > range.lo)) return kColourTableSize / 2;
+  const double t = (value - range.lo) / (range.hi - range.lo);
+  // Compare before converting: t may be infinite or far outside the int range.
+  if (!(t > 0)) return 0;
+  if (t >= 1) return kColourTableSize - 1;
+  return std::min(static_cast<int>(t * kColourTableSize), kColourTableSize - 1);
+}
 
 /// colour_table(kind)[colour_index(...)], or kMissingValueColour for -1. Never throws.
 Rgb8 colour_of(ScaleKind kind, const ValueRange& range, double value);

@@ -58,4 +58,12 @@ SphereHit locate_on_sphere(const SphereLocator& locator, const Vec3& direction);
 /// candidate (rounding) and the nearest one is chosen among another cell's candidates. Never throws.
 SphereHit locate_on_sphere(const SphereLocator& locator, const Vec3& direction, double colatitude, double azimuth);
 
+/// The same, trying triangle `hint` first (-1: none; e.g. the previous pixel's, which most pixels share): where the
+/// point lies inside it by more than rounding (each weight at least 1e-6 of their sum), that triangle. On a map that
+/// covers the sphere once no other triangle contains such a point, so the result is the one above; where triangles
+/// overlap (a folded map) it may be another that contains the point. Precondition: hint < triangles.size().
+/// Never throws.
+SphereHit locate_on_sphere(const SphereLocator& locator, const Vec3& direction, double colatitude, double azimuth,
+                           std::int32_t hint);
+
 }  // namespace spheremap
