@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "sphere_optimizer.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/optimize.hpp"
 
@@ -107,6 +108,8 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
   plain.repair = false;  // an optimized map that does not certify is dropped, not untangled
   const auto stages = stages_of(report.energy);
   report.outcome = ObjectiveOutcome::kResultNotCertified;
+  // One optimizer for all stages: the Hessian's pattern and CHOLMOD's symbolic analysis are the same.
+  SphereOptimizer optimizer(mesh.positions, mesh.triangles, fixed, optimize);
   for (std::size_t stage = 0; stage < stages.size(); ++stage) {
     optimize.shape_weight = stages[stage].shape_weight;
     optimize.collapse_barrier_weight = stages[stage].collapse_barrier_weight;
@@ -115,7 +118,7 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
     if (stage > 0 && optimize.max_iterations <= 0) break;
     SphereOptimizeReport step;
     try {
-      step = optimize_on_sphere(mesh.positions, mesh.triangles, sphere, fixed, optimize);
+      step = optimizer.run(sphere, optimize);
     } catch (const std::invalid_argument&) {
       // Rotating back rounded a certified but nearly flat triangle to a non-positive orientation.
       if (stage == 0) report.outcome = ObjectiveOutcome::kStartNotCertified;

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "../util/parallel.hpp"
 #include "solver_section.hpp"
+#include "sphere_optimizer.hpp"
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/sphere/optimize.hpp"
@@ -71,22 +73,51 @@ struct LocalTerms {
 
 constexpr int lower_index(int row, int column) { return row * (row + 1) / 2 + column; }
 
-class Optimizer {
+// The second term of `options`' energy.
+detail::SecondTerm second_term(const SphereOptimizeOptions& options) {
+  return options.energy == SphereEnergy::kConformal
+             ? detail::SecondTerm(options.collapse_barrier_weight, options.collapse_threshold)
+             : detail::SecondTerm(options.shape_weight);
+}
+
+}  // namespace
+
+namespace detail {
+
+class SphereOptimizer::Optimizer {
  public:
-  Optimizer(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles, std::vector<Vec3>& sphere,
-            const std::vector<char>& fixed, const SphereOptimizeOptions& options)
+  Optimizer(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles, const std::vector<char>& fixed,
+            const SphereOptimizeOptions& options)
       : triangles_(triangles),
-        sphere_(sphere),
         options_(options),
-        dof_(sphere.size(), -1),
+        dof_(fixed.size(), -1),
         threads_(detail::surface_threads(options.threads)),
-        term_(options.energy == SphereEnergy::kConformal
-                  ? detail::SecondTerm(options.collapse_barrier_weight, options.collapse_threshold)
-                  : detail::SecondTerm(options.shape_weight)) {
-    for (std::size_t v = 0; v < sphere.size(); ++v)
+        term_(second_term(options)) {
+    for (std::size_t v = 0; v < fixed.size(); ++v)
       if (!fixed[v]) dof_[v] = 2 * free_count_++;
     cholesky_.cholmod().print = 0;  // a matrix that is not positive definite is an answer here, not an error
     build_rest(rest);
+  }
+
+  // One optimization from `sphere` with `stage`'s weights, tolerance and iteration cap (the energy and
+  // the rest scaling stay the constructor's); the pattern and CHOLMOD's analysis serve every call.
+  SphereOptimizeReport run(std::vector<Vec3>& sphere, const SphereOptimizeOptions& stage) {
+    options_.shape_weight = stage.shape_weight;
+    options_.collapse_barrier_weight = stage.collapse_barrier_weight;
+    options_.collapse_threshold = stage.collapse_threshold;
+    options_.max_iterations = stage.max_iterations;
+    options_.relative_tolerance = stage.relative_tolerance;
+    term_ = second_term(options_);
+    if (sphere.size() != dof_.size())
+      throw std::invalid_argument("optimize_on_sphere: " + std::to_string(sphere.size()) + " sphere points for " +
+                                  std::to_string(dof_.size()) + " vertices");
+    if (!valid(sphere) || !std::isfinite(energy(sphere)))
+      throw std::invalid_argument(
+          "optimize_on_sphere: the start is not a valid map (a triangle is not positively oriented)");
+    sphere_.swap(sphere);
+    const auto report = run();
+    sphere_.swap(sphere);
+    return report;
   }
 
   double energy(const std::vector<Vec3>& points) const {
@@ -128,7 +159,7 @@ class Optimizer {
       report.stop_reason = OptimizeStop::kConverged;
       return report;
     }
-    build_pattern();
+    if (!analysed_) build_pattern();
     std::vector<Vec3> e1(sphere_.size()), e2(sphere_.size()), trial(sphere_);
     // Near the minimum the per-triangle projection throws away curvature the sum has, and the steps
     // converge only linearly: after a full, uncut step the next one tries the Hessian as it is, and
@@ -365,8 +396,8 @@ class Optimizer {
   }
 
   const std::vector<Triangle>& triangles_;
-  std::vector<Vec3>& sphere_;
-  const SphereOptimizeOptions& options_;
+  std::vector<Vec3> sphere_;  // the points of the run under way
+  SphereOptimizeOptions options_;
   std::vector<Eigen::Index> dof_;  // first tangent coordinate of each free vertex, -1 if fixed
   Eigen::Index free_count_ = 0;
   int threads_;
@@ -381,7 +412,21 @@ class Optimizer {
   bool analysed_ = false;
 };
 
-}  // namespace
+SphereOptimizer::SphereOptimizer(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles,
+                                 const std::vector<char>& fixed, const SphereOptimizeOptions& options) {
+  if (rest.size() != fixed.size())
+    throw std::invalid_argument("optimize_on_sphere: " + std::to_string(rest.size()) + " rest positions and " +
+                                std::to_string(fixed.size()) + " fixed flags");
+  optimizer_ = std::make_unique<Optimizer>(rest, triangles, fixed, options);
+}
+
+SphereOptimizer::~SphereOptimizer() = default;
+
+SphereOptimizeReport SphereOptimizer::run(std::vector<Vec3>& sphere, const SphereOptimizeOptions& options) {
+  return optimizer_->run(sphere, options);
+}
+
+}  // namespace detail
 
 SphereOptimizeReport optimize_on_sphere(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles,
                                         std::vector<Vec3>& sphere, const std::vector<char>& fixed,
@@ -390,11 +435,8 @@ SphereOptimizeReport optimize_on_sphere(const std::vector<Vec3>& rest, const std
     throw std::invalid_argument("optimize_on_sphere: " + std::to_string(rest.size()) + " rest positions, " +
                                 std::to_string(sphere.size()) + " sphere points and " + std::to_string(fixed.size()) +
                                 " fixed flags");
-  Optimizer optimizer(rest, triangles, sphere, fixed, options);
-  if (!optimizer.valid(sphere) || !std::isfinite(optimizer.energy(sphere)))
-    throw std::invalid_argument(
-        "optimize_on_sphere: the start is not a valid map (a triangle is not positively oriented)");
-  return optimizer.run();
+  detail::SphereOptimizer optimizer(rest, triangles, fixed, options);
+  return optimizer.run(sphere, options);
 }
 
 }  // namespace spheremap

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../src/sphere/sphere_optimizer.hpp"
 #include "../../src/sphere/triangle_energy.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/geometry/predicates.hpp"
@@ -185,6 +186,36 @@ TEST(ObjectiveOptimization, AreaStepsFromThePapersMapAreFullSteps) {
   EXPECT_LE(report.iterations, 16);
   EXPECT_TRUE(certify_sphere_map(mesh, points).certified());
   EXPECT_LT(mean_log_area_ratio(mesh, points), 0.2);
+}
+
+// The objective's stages share one optimizer (its pattern and CHOLMOD's analysis): two runs at two
+// shape weights give the points of two separate optimize_on_sphere calls, to the bit, and the same reports.
+TEST(ObjectiveOptimization, OneOptimizerForSeveralStagesMatchesSeparateRuns) {
+  const Mesh mesh = prepared(make_dumbbell(3.0, 0.4, 24, 16));
+  const SphereMap paper = map_to_sphere(mesh);
+  ASSERT_TRUE(paper.certificate.certified());
+  std::vector<char> fixed(paper.sphere.size(), 0);
+  fixed[paper.poles.north] = fixed[paper.poles.south] = 1;
+  SphereOptimizeOptions first, second;
+  first.energy = second.energy = SphereEnergy::kLogAreaRatio;
+  second.shape_weight = 0.03;
+  second.relative_tolerance = 1e-8;
+  std::vector<Vec3> separate = paper.sphere, shared = paper.sphere;
+  const auto a1 = optimize_on_sphere(mesh.positions, mesh.triangles, separate, fixed, first);
+  const auto a2 = optimize_on_sphere(mesh.positions, mesh.triangles, separate, fixed, second);
+  detail::SphereOptimizer optimizer(mesh.positions, mesh.triangles, fixed, first);
+  const auto b1 = optimizer.run(shared, first);
+  const auto b2 = optimizer.run(shared, second);
+  EXPECT_GT(a2.iterations, 0);
+  EXPECT_EQ(a1.iterations, b1.iterations);
+  EXPECT_EQ(a2.iterations, b2.iterations);
+  EXPECT_EQ(a2.energy_after, b2.energy_after);
+  EXPECT_EQ(separate, shared);
+  // A start that is not a valid map is refused on a run of a shared optimizer too.
+  std::vector<Vec3> folded = paper.sphere;
+  const auto& t = mesh.triangles[0];
+  std::swap(folded[t[0]], folded[t[1]]);
+  EXPECT_THROW(optimizer.run(folded, first), std::invalid_argument);
 }
 
 // map_to_sphere with each objective: certified, the optimization reported, and (with `distortion`) the
