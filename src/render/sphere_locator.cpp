@@ -101,6 +101,38 @@ void lay_out_grid(SphereLocator& l) {
   }
 }
 
+// The triangle across each edge (SphereLocator::neighbours), from the triangles around each vertex.
+std::vector<std::array<std::int32_t, 3>> triangle_neighbours(std::size_t vertex_count,
+                                                             const std::vector<Triangle>& triangles, int threads) {
+  std::vector<std::int32_t> first(vertex_count + 1, 0);
+  for (const Triangle& t : triangles)
+    for (const std::int32_t v : t) ++first[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < vertex_count; ++v) first[v + 1] += first[v];
+  std::vector<std::int32_t> around(static_cast<std::size_t>(first[vertex_count]));
+  std::vector<std::int32_t> next(first.begin(), first.end() - 1);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (const std::int32_t v : triangles[t])
+      around[static_cast<std::size_t>(next[v]++)] = static_cast<std::int32_t>(t);
+  std::vector<std::array<std::int32_t, 3>> neighbours(triangles.size(), {-1, -1, -1});
+  detail::parallel_ranges(
+      static_cast<std::int64_t>(triangles.size()), 8192, threads, [&](std::int64_t begin, std::int64_t end) {
+        for (auto t = static_cast<std::size_t>(begin); t < static_cast<std::size_t>(end); ++t)
+          for (int k = 0; k < 3; ++k) {
+            // Edge (from, to) of t; the triangle across has (to, from).
+            const std::int32_t from = triangles[t][(k + 1) % 3], to = triangles[t][(k + 2) % 3];
+            int found = 0;
+            for (std::int32_t i = first[to]; i < first[to + 1]; ++i) {
+              const Triangle& u = triangles[static_cast<std::size_t>(around[static_cast<std::size_t>(i)])];
+              for (int j = 0; j < 3; ++j)
+                if (u[j] == to && u[(j + 1) % 3] == from)
+                  neighbours[t][k] = around[static_cast<std::size_t>(i)], ++found;
+            }
+            if (found != 1) neighbours[t][k] = -1;
+          }
+      });
+  return neighbours;
+}
+
 }  // namespace
 
 SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
@@ -130,6 +162,7 @@ SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::
                               l.edge_normals[t] = {n0[0], n0[1], n0[2], n1[0], n1[1], n1[2], n2[0], n2[1], n2[2]};
                             }
                           });
+  l.neighbours = triangle_neighbours(l.vertices.size(), triangles, detail::surface_threads(threads));
   // Bands of rows side by side: each band's cells are its own, and each band takes the triangles in index order,
   // so every cell lists its triangles in index order whatever the number of bands.
   const int bands = std::min(l.rows, detail::surface_threads(threads));
@@ -161,6 +194,8 @@ namespace {
 constexpr double kOutside = -1e-300;
 // How far inside a hinted triangle (its smallest weight over their sum) a point must be to take it unsearched.
 constexpr double kHintMargin = 1e-6;
+// Triangles tried from the hint before the cell search.
+constexpr int kHintSteps = 4;
 
 // The first candidate of `cell`, in index order, that contains `direction`, else the one it is least outside
 // (weights clamped).
@@ -220,16 +255,20 @@ SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction, double
 }
 
 SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction, double theta, double phi, std::int32_t hint) {
-  if (hint >= 0) {
+  // Neighbouring pixels lie in the same triangle or one or two edges away: a short walk finds most of them.
+  for (int step = 0; step < kHintSteps && hint >= 0; ++step) {
     // The weights as locate_in_cell computes them, so that the hit is the same to the bit.
     const Vec3& d = direction;
-    const std::array<double, 9>& n = l.edge_normals[hint];
+    const std::array<double, 9>& n = l.edge_normals[static_cast<std::size_t>(hint)];
     const double w0 = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
     const double w1 = d[0] * n[3] + d[1] * n[4] + d[2] * n[5];
     const double w2 = d[0] * n[6] + d[1] * n[7] + d[2] * n[8];
     const double total = w0 + w1 + w2;
+    if (!(total > 0)) break;
     // Well inside (rounding moves a weight by about 1e-16 of the sum): no other triangle of a one-to-one map has it.
-    if (total > 0 && std::min({w0, w1, w2}) >= kHintMargin * total) return {hint, {w0 / total, w1 / total, w2 / total}};
+    if (std::min({w0, w1, w2}) >= kHintMargin * total) return {hint, {w0 / total, w1 / total, w2 / total}};
+    const int across = w0 <= w1 ? (w0 <= w2 ? 0 : 2) : (w1 <= w2 ? 1 : 2);
+    hint = l.neighbours[static_cast<std::size_t>(hint)][across];
   }
   return locate_on_sphere(l, direction, theta, phi);
 }

@@ -129,7 +129,8 @@ TEST(SphereLocator, FindsTheTriangleUnderRandomPointsPolesAndTheSeam) {
 
 TEST(SphereLocator, AHintChangesNothingOnAOneToOneMap) {
   // Random points, the mesh's corners and edge midpoints (which several triangles contain: the hint must not
-  // win over the first of them), each hinted with every triangle that holds one of its candidates' corners.
+  // win over the first of them), each hinted with every triangle that holds one of its candidates' corners,
+  // and the last 200 random points with every triangle (walks that end far from the point).
   const Mesh sphere = make_icosphere(3);
   const SphereLocator locator = make_sphere_locator(sphere.positions, sphere.triangles);
   std::mt19937 random(11);
@@ -143,7 +144,9 @@ TEST(SphereLocator, AHintChangesNothingOnAOneToOneMap) {
     }
   for (int k = 0; k < 2000; ++k) points.push_back({normal(random), normal(random), normal(random)});
   int hinted = 0;
-  for (const Vec3& point : points) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& point = points[i];
+    const bool every_hint = i + 200 >= points.size();
     const Vec3 p = unit(point);
     const double theta = std::acos(std::clamp(p[2], -1.0, 1.0)), phi = std::atan2(p[1], p[0]);
     const SphereHit expected = locate_on_sphere(locator, point, theta, phi);
@@ -151,7 +154,7 @@ TEST(SphereLocator, AHintChangesNothingOnAOneToOneMap) {
     const Triangle& under = locator.triangles[expected.triangle];
     for (std::int32_t hint = 0; hint < static_cast<std::int32_t>(locator.triangles.size()); ++hint) {
       const Triangle& t = locator.triangles[hint];
-      if (std::find_first_of(t.begin(), t.end(), under.begin(), under.end()) == t.end()) continue;  // far away
+      if (!every_hint && std::find_first_of(t.begin(), t.end(), under.begin(), under.end()) == t.end()) continue;
       const SphereHit hit = locate_on_sphere(locator, point, theta, phi, hint);
       ASSERT_EQ(hit.triangle, expected.triangle) << "hint " << hint;
       for (int c = 0; c < 3; ++c) EXPECT_EQ(hit.weights[c], expected.weights[c]);
@@ -159,6 +162,29 @@ TEST(SphereLocator, AHintChangesNothingOnAOneToOneMap) {
     }
   }
   EXPECT_GT(hinted, 20000);
+}
+
+TEST(SphereLocator, NeighboursShareTheEdgeAcross) {
+  const Mesh sphere = make_icosphere(2);
+  SphereLocator locator = make_sphere_locator(sphere.positions, sphere.triangles);
+  ASSERT_EQ(locator.neighbours.size(), sphere.triangles.size());
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t across = locator.neighbours[t][k];
+      ASSERT_GE(across, 0);
+      const Triangle& u = sphere.triangles[static_cast<std::size_t>(across)];
+      const std::int32_t from = sphere.triangles[t][(k + 1) % 3], to = sphere.triangles[t][(k + 2) % 3];
+      bool reversed = false;
+      for (int j = 0; j < 3; ++j) reversed = reversed || (u[j] == to && u[(j + 1) % 3] == from);
+      EXPECT_TRUE(reversed) << "triangle " << t << " edge " << k;
+    }
+  // A hole: the triangles around a removed one have no neighbour there.
+  Mesh open = sphere;
+  open.triangles.pop_back();
+  locator = make_sphere_locator(open.positions, open.triangles);
+  int missing = 0;
+  for (const auto& n : locator.neighbours) missing += static_cast<int>(std::count(n.begin(), n.end(), -1));
+  EXPECT_EQ(missing, 3);
 }
 
 TEST(SphereLocator, RefusesAnIndexOutOfRange) {

@@ -25,6 +25,9 @@ struct SphereLocator {
   /// Per triangle (a, b, c): b × c, c × a, a × b, whose dot products with a point are its unnormalized
   /// barycentric weights (one read of 72 contiguous bytes per candidate instead of three scattered corners).
   std::vector<std::array<double, 9>> edge_normals;
+  /// Per triangle, the triangle across each edge: across (b, c), (c, a), (a, b), -1 where no triangle has that
+  /// edge reversed (a hole) or several do. The hinted search walks across them.
+  std::vector<std::array<std::int32_t, 3>> neighbours;
 };
 
 /// The triangle under a point and the point's barycentric weights in it (>= 0, summing to 1): the weights of
@@ -58,8 +61,9 @@ SphereHit locate_on_sphere(const SphereLocator& locator, const Vec3& direction);
 /// candidate (rounding) and the nearest one is chosen among another cell's candidates. Never throws.
 SphereHit locate_on_sphere(const SphereLocator& locator, const Vec3& direction, double colatitude, double azimuth);
 
-/// The same, trying triangle `hint` first (-1: none; e.g. the previous pixel's, which most pixels share): where the
-/// point lies inside it by more than rounding (each weight at least 1e-6 of their sum), that triangle. On a map that
+/// The same, trying triangle `hint` first (-1: none; e.g. the previous pixel's, which most pixels share), then
+/// walking from it across the edge the point lies farthest beyond, a few triangles at most: where the point lies
+/// inside one of them by more than rounding (each weight at least 1e-6 of their sum), that triangle. On a map that
 /// covers the sphere once no other triangle contains such a point, so the result is the one above; where triangles
 /// overlap (a folded map) it may be another that contains the point. Precondition: hint < triangles.size().
 /// Never throws.
