@@ -9,8 +9,6 @@
 namespace spheremap::io_detail {
 namespace {
 
-constexpr const char* kFix = "fix the line or re-export the mesh";
-
 void read_vertex(std::string_view rest, std::size_t line_number, PolygonSoup& soup, const std::string& file) {
   Vec3 position{};
   // Further values (w, or vertex colours) are ignored.

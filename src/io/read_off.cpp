@@ -13,8 +13,6 @@
 namespace spheremap::io_detail {
 namespace {
 
-constexpr const char* kFix = "fix the line or re-export the mesh";
-
 /// Hands out the lines that hold data: comments stripped, blank lines skipped.
 class DataLines {
  public:

@@ -19,6 +19,9 @@
 
 namespace spheremap::io_detail {
 
+/// The fix a text mesh reader's message suggests for a bad line.
+inline constexpr const char* kFix = "fix the line or re-export the mesh";
+
 PolygonSoup read_obj(std::string_view bytes, const std::string& file);
 PolygonSoup read_off(std::string_view bytes, const std::string& file);
 PolygonSoup read_ply(std::string_view bytes, const std::string& file);

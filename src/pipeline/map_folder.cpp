@@ -29,7 +29,7 @@ std::string input_name(const std::string& input) {
   return valid_utf8(name.stem().string());  // titles go through cairo, which takes UTF-8 only
 }
 
-std::string read_text(const std::filesystem::path& path) {
+std::string file_text(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
@@ -72,7 +72,7 @@ std::vector<std::int32_t> integer_column(const std::vector<DelimitedRecord>& row
 // Joins atoms.csv's provenance columns to the surface's vertices by `atomid` (row k + 1 is atom k).
 void join_atoms(Mesh& surface, const std::filesystem::path& path) {
   const std::vector<std::int32_t>& atomid = surface.integer_attributes.at(attributes::kAtomId);
-  const std::vector<DelimitedRecord> rows = read_delimited(read_text(path), ',', path.string());
+  const std::vector<DelimitedRecord> rows = read_delimited(file_text(path), ',', path.string());
   if (rows.empty()) throw InputError(fmt::format("{}: empty, no header; {}", path.string(), kFix));
   const std::vector<std::string>& header = rows.front().fields;
   auto column = [&](const char* name) {
@@ -148,7 +148,7 @@ MapFolder read_map_folder(const std::filesystem::path& folder) {
                                  folder.string(), kSurfaceFile, kSphereFile, kFix));
   map.sphere = sphere.positions;
   try {
-    map.report = nlohmann::json::parse(read_text(folder / kReportFile));
+    map.report = nlohmann::json::parse(file_text(folder / kReportFile));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON ({}); {}", (folder / kReportFile).string(), e.what(), kFix));
   }

@@ -100,10 +100,6 @@ ChargeAssignment formal_charges(const std::vector<Atom>& atoms) {
     bool has_oxt = false;
   };
   std::vector<Residue> residues;
-  const auto same_residue = [](const Atom& a, const Atom& b) {
-    return a.chain == b.chain && a.residue_number == b.residue_number && a.insertion_code == b.insertion_code &&
-           a.residue_name == b.residue_name;
-  };
   for (std::size_t i = 0; i < atoms.size(); ++i) {
     if (residues.empty() || !same_residue(atoms[residues.back().first], atoms[i])) residues.push_back({i, i, false});
     residues.back().last = i + 1;

@@ -20,11 +20,6 @@ std::string trimmed_upper(const std::string& text) {
   return out;
 }
 
-bool same_residue(const Atom& a, const Atom& b) {
-  return a.chain == b.chain && a.residue_number == b.residue_number && a.insertion_code == b.insertion_code &&
-         a.residue_name == b.residue_name;
-}
-
 // One-character chain names: the structure's own when they all are, else A-Z, a-z, 0-9 in order of appearance.
 std::map<std::string, std::string> chain_letters(const std::vector<Atom>& atoms, const std::string& name) {
   std::vector<std::string> chains;

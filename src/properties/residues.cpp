@@ -7,11 +7,6 @@
 namespace spheremap {
 namespace {
 
-bool same_residue(const Atom& a, const Atom& b) {
-  return a.chain == b.chain && a.residue_number == b.residue_number && a.insertion_code == b.insertion_code &&
-         a.residue_name == b.residue_name;
-}
-
 // Marks every ATOM residue as polymer, and the HETATM residues of a chain that lie between two of them.
 void mark_polymer(ResidueIndex& index, const std::vector<bool>& hetero) {
   std::vector<std::int32_t> last_atom_record(index.chains.size(), -1);

@@ -96,7 +96,6 @@ const char* to_string(FillReducingOrder order) {
 namespace {
 
 using detail::WorkingMesh;
-constexpr double kPi = std::numbers::pi;
 
 // The poles given in the options (checked), or the two vertices farthest apart; and their graph distance.
 MapPoles choose_poles(const Mesh& mesh, const VertexRings& rings, const MapOptions& options) {
@@ -197,7 +196,7 @@ PlainMap map_poles_and_rings(WorkingMesh& work, std::int32_t input_vertices, con
     work.rings = build_vertex_rings(static_cast<std::int32_t>(work.positions.size()), work.triangles);
   construction.north_ring_size = work.rings.degree(north);
   construction.south_ring_size = work.rings.degree(south);
-  construction.theta0 = kPi / poles.graph_distance;
+  construction.theta0 = std::numbers::pi / poles.graph_distance;
   construction.ring_z = detail::kRingZ;
   construction.mercator_c =
       detail::kRingZ / std::log((1 + std::cos(construction.theta0)) / std::sin(construction.theta0));
@@ -251,8 +250,8 @@ void set_angles(SphereMap& result, const std::vector<Vec3>& sphere) {
     // 2e-8 away from 0; atan2 keeps full precision near the poles.
     result.theta[v] = std::atan2(std::hypot(u[0], u[1]), u[2]);
     double phi = std::atan2(u[1], u[0]);
-    if (phi < 0) phi += 2 * kPi;
-    if (phi >= 2 * kPi) phi = 0;  // -0 and tiny negatives round up to 2π
+    if (phi < 0) phi += 2 * std::numbers::pi;
+    if (phi >= 2 * std::numbers::pi) phi = 0;  // -0 and tiny negatives round up to 2π
     result.phi[v] = phi;
   }
 }

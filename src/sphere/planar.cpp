@@ -13,8 +13,6 @@
 namespace spheremap::detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Fill-reducing orders (harmonic.hpp). The geometric nested dissection is cheap and the best on smooth,
 // convex-ish shapes (a subdivided cube, perturbed or not), but a plane cuts a molecular surface, or a
 // body with limbs (armadillo), along long curves, where AMD's order needs 2-10x fewer flops. The flops of
@@ -84,7 +82,7 @@ HarmonicProblem phi_problem_for(const WorkingMesh& work, std::int32_t north, std
     for (std::int64_t k = 0; k < size; ++k) {
       const auto v = north_ring[(first + k) % size];
       phi_problem.fixed[v] = 1;
-      phi[v] = 2 * kPi * static_cast<double>(k) / static_cast<double>(size);
+      phi[v] = 2 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(size);
     }
   }
   {
@@ -95,7 +93,7 @@ HarmonicProblem phi_problem_for(const WorkingMesh& work, std::int32_t north, std
     for (std::int64_t k = 0; k < size; ++k) {
       const auto v = south_ring[(first + k) % size];
       phi_problem.fixed[v] = 1;
-      phi[v] = k == 0 ? 0.0 : 2 * kPi * static_cast<double>(size - k) / static_cast<double>(size);
+      phi[v] = k == 0 ? 0.0 : 2 * std::numbers::pi * static_cast<double>(size - k) / static_cast<double>(size);
     }
   }
   for (std::size_t m = 0; m < meridian.size(); ++m) {
@@ -113,7 +111,7 @@ HarmonicProblem phi_problem_for(const WorkingMesh& work, std::int32_t north, std
       for (std::size_t k = 0; k < ring_i.size(); ++k) {
         if (ring_i[k] != b) continue;
         phi_problem.slot_value[rings.offsets[i] + static_cast<std::int64_t>(k)] =
-            is_west_of(rings, b, up, down, i) ? 2 * kPi : 0.0;
+            is_west_of(rings, b, up, down, i) ? 2 * std::numbers::pi : 0.0;
       }
     }
   }

@@ -11,7 +11,6 @@
 namespace spheremap::detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // Re-weighting against collapse (docs/algorithm.md, "Collapse: re-weighting", explains the choices). Each vertex whose
 // normalized area ratio r (over its star) is below kReweightingTarget gets a step
 // ln g += kReweightingExponent · ln(r / target), averaged twice over the 1-ring and at most
@@ -69,7 +68,7 @@ std::vector<double> vertex_area_ratios(const WorkingMesh& work, const TriangleAr
   }
   std::vector<double> ratio(n, 1.0);
   for (std::int64_t v = 0; v < n; ++v) {
-    if (surface_area[v] > 0) ratio[v] = (sphere_area[v] / (4 * kPi)) / (surface_area[v] / areas.total);
+    if (surface_area[v] > 0) ratio[v] = (sphere_area[v] / (4 * std::numbers::pi)) / (surface_area[v] / areas.total);
   }
   return ratio;
 }
@@ -85,7 +84,7 @@ double mean_area_distortion(const TriangleAreas& areas, const std::vector<double
   double sum = 0;
   for (std::size_t k = 0; k < areas.area.size(); ++k) {
     const double share = areas.area[k] / areas.total;
-    const double solid = std::abs(solid_angles[k]) / (4 * kPi);
+    const double solid = std::abs(solid_angles[k]) / (4 * std::numbers::pi);
     sum += share > 0 ? std::abs(solid / share - 1) : 0;
   }
   return sum / static_cast<double>(areas.area.size());

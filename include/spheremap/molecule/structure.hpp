@@ -33,6 +33,12 @@ struct Atom {
   bool hetero = false;     // HETATM record
 };
 
+/// Whether two atoms belong to one residue: same chain, residue number, insertion code and name. Never throws.
+inline bool same_residue(const Atom& a, const Atom& b) {
+  return a.chain == b.chain && a.residue_number == b.residue_number && a.insertion_code == b.insertion_code &&
+         a.residue_name == b.residue_name;
+}
+
 struct StructureOptions {
   /// Which model to read: 1 = the first in the file (the default), N = the N-th.
   int model = 1;
