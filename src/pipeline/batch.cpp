@@ -112,16 +112,24 @@ class WorkerPool {
   // every worker has ended.
   std::deque<BatchInputOutcome> wait(std::chrono::duration<double> tick, std::size_t& running, bool& all_done) {
     std::deque<BatchInputOutcome> ready;
-    std::unique_lock guard(mutex_);
-    changed_.wait_for(guard, tick, [&] { return !finished_.empty() || workers_done_ == worker_count_; });
-    ready.swap(finished_);
-    running = running_;
-    all_done = workers_done_ == worker_count_;
+    {
+      // The caller holds the batch gate when isolating (run_batch): not while it waits. Taken back after
+      // mutex_ is released, in the workers' order (gate, then mutex_).
+      if (options_.isolate) pipeline_detail::batch_gate().unlock();
+      std::unique_lock guard(mutex_);
+      changed_.wait_for(guard, tick, [&] { return !finished_.empty() || workers_done_ == worker_count_; });
+      ready.swap(finished_);
+      running = running_;
+      all_done = workers_done_ == worker_count_;
+    }
+    if (options_.isolate) pipeline_detail::batch_gate().lock();
     return ready;
   }
 
  private:
   void work() {
+    std::unique_lock gate(pipeline_detail::batch_gate(), std::defer_lock);
+    if (options_.isolate) gate.lock();  // released while a child maps (run_batch_input)
     for (;;) {
       if (stopping_.load()) break;
       const std::size_t slot = next_.fetch_add(1);
@@ -217,6 +225,10 @@ BatchResult run_batch(const fs::path& root, const std::vector<BatchInput>& input
   bool stopping = false;
   {
     WorkerPool pool(root, inputs, todo, options, lock);
+    // Isolating, this thread holds the batch gate while it works (pipeline_detail::batch_gate); destroyed
+    // before the pool, so that the workers can end.
+    std::unique_lock gate(pipeline_detail::batch_gate(), std::defer_lock);
+    if (options.isolate) gate.lock();
     try {
       pool.start();
       supervise(pool, root, inputs, options.weights, callbacks, progress, started);
@@ -224,6 +236,7 @@ BatchResult run_batch(const fs::path& root, const std::vector<BatchInput>& input
       pool.stop();
       throw;  // ~WorkerPool joins the threads
     }
+    if (gate.owns_lock()) gate.unlock();
     pool.join();
     stopping = pool.stopping();
   }

@@ -110,12 +110,19 @@ void map_input_in_child(const InputRuns& runs, const std::vector<std::size_t>& p
     return;
   }
   int status = 0;
+  batch_gate().unlock();  // held by the caller (run_batch_input's contract) since before the fork
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  batch_gate().lock();
   if (WIFSIGNALED(status)) record_child_death(runs, pending, WTERMSIG(status));
 }
 
 }  // namespace
+
+std::mutex& batch_gate() {
+  static std::mutex gate;
+  return gate;
+}
 
 BatchInputOutcome run_batch_input(const fs::path& root, const BatchInput& input, std::size_t index,
                                   const BatchOptions& options, const BatchLock& lock) {

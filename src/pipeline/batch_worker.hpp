@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <mutex>
 #include <new>
 #include <optional>
 #include <string>
@@ -38,9 +39,16 @@ std::optional<Failure> capture(F&& f) {
   }
 }
 
+/// Held by every thread of a batch that isolates its inputs (options.isolate) while it runs, and released
+/// only while it blocks (waiting for a child or for an outcome): so a child is forked while no other thread
+/// of the process is in the middle of anything (an allocation holding the allocator's lock, which the child
+/// would inherit locked: AddressSanitizer's allocator does not take its locks across fork as glibc's does).
+std::mutex& batch_gate();
+
 /// Maps the pending runs of `input` (options.weights; in a child process with options.isolate, which
-/// forgets `lock` there) and returns what its run folders say afterwards. Never throws: what happened
-/// is on disk, in each run folder.
+/// forgets `lock` there) and returns what its run folders say afterwards. With options.isolate the caller
+/// holds batch_gate(), which is released while the child runs. Never throws: what happened is on disk, in
+/// each run folder.
 BatchInputOutcome run_batch_input(const std::filesystem::path& root, const BatchInput& input, std::size_t index,
                                   const BatchOptions& options, const BatchLock& lock);
 
