@@ -100,6 +100,8 @@ class WorkerPool {
   void start() {
     threads_.reserve(worker_count_);
     for (std::size_t t = 0; t < worker_count_; ++t) threads_.emplace_back([this] { work(); });
+    // A new thread's start allocates (the sanitizers' thread state): done before the first fork.
+    while (started_.load() < worker_count_) std::this_thread::yield();
   }
   // No new input is started; the running ones finish.
   void stop() { stopping_.store(true); }
@@ -128,6 +130,7 @@ class WorkerPool {
 
  private:
   void work() {
+    started_.fetch_add(1);
     std::unique_lock gate(pipeline_detail::batch_gate(), std::defer_lock);
     if (options_.isolate) gate.lock();  // released while a child maps (run_batch_input)
     for (;;) {
@@ -145,13 +148,15 @@ class WorkerPool {
         --running_;
         finished_.push_back(std::move(outcome));
       }
-      changed_.notify_one();
+      changed_.notify_all();
     }
-    {
-      const std::lock_guard guard(mutex_);
-      ++workers_done_;
-    }
-    changed_.notify_one();
+    std::unique_lock guard(mutex_);
+    ++workers_done_;
+    changed_.notify_all();
+    if (!gate.owns_lock()) return;
+    // A thread's exit frees its allocator cache: this one ends only when no worker will fork again.
+    gate.unlock();
+    changed_.wait(guard, [&] { return workers_done_ == worker_count_; });
   }
 
   const fs::path& root_;
@@ -165,7 +170,7 @@ class WorkerPool {
   std::condition_variable changed_;
   std::deque<BatchInputOutcome> finished_;
   std::size_t running_ = 0, workers_done_ = 0;
-  std::atomic<std::size_t> next_{0};
+  std::atomic<std::size_t> next_{0}, started_{0};
   std::atomic<bool> stopping_{false};
 };
 
