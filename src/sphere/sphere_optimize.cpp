@@ -213,26 +213,22 @@ class SphereOptimizer::Optimizer {
         largest = std::max(largest, std::hypot(step[i], step[i + 1]));
       double alpha = largest > kMaxVertexStep ? kMaxVertexStep / largest : 1.0;
       const double first_alpha = alpha;
-      auto place = [&](double a, std::vector<Vec3>& out) {
+      bool accepted = false;
+      double trial_energy = current;
+      for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= kBacktrack) {
         detail::parallel_ranges(static_cast<std::int64_t>(sphere_.size()), 4 * kChunk, threads_,
                                 [&](std::int64_t first, std::int64_t last) {
                                   for (auto v = static_cast<std::size_t>(first); v < static_cast<std::size_t>(last);
                                        ++v) {
                                     if (dof_[v] < 0) continue;
-                                    const double u = a * step[dof_[v]], w = a * step[dof_[v] + 1];
-                                    out[v] = normalized(sphere_[v] + u * e1[v] + w * e2[v]);
+                                    const double u = alpha * step[dof_[v]], w = alpha * step[dof_[v] + 1];
+                                    trial[v] = normalized(sphere_[v] + u * e1[v] + w * e2[v]);
                                   }
                                 });
-      };
-      bool accepted = false;
-      double trial_energy = current;
-      for (int k = 0; k < kMaxBacktracks && !accepted; ++k, alpha *= kBacktrack) {
-        place(alpha, trial);
         trial_energy = energy(trial);
         accepted = trial_energy <= current + kArmijo * alpha * slope && valid(trial);
       }
-      const double taken = alpha / kBacktrack;
-      const bool full = accepted && taken == 1.0 && first_alpha == 1.0;
+      const bool full = accepted && alpha / kBacktrack == 1.0 && first_alpha == 1.0;
       if (!accepted) {
         report.stop_reason = OptimizeStop::kLineSearch;
         break;
@@ -259,20 +255,7 @@ class SphereOptimizer::Optimizer {
   // Each free vertex's two tangent coordinates are consecutive unknowns, the vertices in the geometric
   // nested-dissection order of the surface (harmonic.hpp): the factorization's fill-reducing order.
   void number_unknowns(const std::vector<Vec3>& rest, const std::vector<char>& fixed) {
-    const auto n = static_cast<std::int32_t>(fixed.size());
-    VertexRings graph;  // the vertices' neighbours through triangles, in no particular order
-    std::vector<std::vector<std::int32_t>> neighbours(static_cast<std::size_t>(n));
-    for (const auto& tri : triangles_)
-      for (int k = 0; k < 3; ++k)
-        neighbours[tri[k]].push_back(tri[(k + 1) % 3]), neighbours[tri[(k + 1) % 3]].push_back(tri[k]);
-    graph.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
-    for (std::int32_t v = 0; v < n; ++v) {
-      auto& list = neighbours[v];
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-      graph.neighbors.insert(graph.neighbors.end(), list.begin(), list.end());
-      graph.offsets[v + 1] = static_cast<std::int64_t>(graph.neighbors.size());
-    }
+    const VertexRings graph = build_vertex_rings(static_cast<std::int32_t>(fixed.size()), triangles_);
     for (const auto v : geometric_elimination_order(graph, rest, fixed).vertices) dof_[v] = 2 * free_count_++;
   }
 
