@@ -273,10 +273,10 @@ SphereOptimizeReport optimize_level(const Mesh& mesh, const std::vector<Triangle
   std::vector<Triangle> local(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) local[t][k] = index.local[triangles[t][k]];
-  // Rest triangles whose area overflows (coordinates of 1e200) give no finite energy to descend: such a
-  // level keeps the points insertion gave it, which are a valid map.
-  for (const auto& t : local)
-    if (!std::isfinite(triangle_area(rest[t[0]], rest[t[1]], rest[t[2]]))) return {};
+  // Rest positions that are not finite give no energy to descend (optimize_on_sphere refuses them): such
+  // a level keeps the points insertion gave it, which are a valid map.
+  for (const auto& p : rest)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) return {};
   options.max_iterations = iterations;
   const auto report = optimize_on_sphere(rest, local, points, fixed, options);
   for (std::size_t i = 0; i < count; ++i) sphere[index.vertices[i]] = points[i];

@@ -86,6 +86,27 @@ detail::SecondTerm second_term(const SphereOptimizeOptions& options) {
              : detail::SecondTerm(options.shape_weight);
 }
 
+// The rest positions times the power of two that brings the largest coordinate into [0.5, 1). Exact, so
+// the energy is the same to the bit; but surfaces of coordinates near 1e±300, whose areas would overflow
+// or underflow, give the same map as any other size. Throws std::invalid_argument on a coordinate that
+// is not finite.
+std::vector<Vec3> unit_scaled(const std::vector<Vec3>& rest) {
+  double largest = 0;
+  for (std::size_t v = 0; v < rest.size(); ++v)
+    for (const double x : rest[v]) {
+      if (!std::isfinite(x))
+        throw std::invalid_argument("optimize_on_sphere: rest position " + std::to_string(v) + " is not finite");
+      largest = std::max(largest, std::abs(x));
+    }
+  if (largest == 0) return rest;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  std::vector<Vec3> scaled(rest.size());
+  for (std::size_t v = 0; v < rest.size(); ++v)
+    for (int k = 0; k < 3; ++k) scaled[v][k] = std::ldexp(rest[v][k], -exponent);
+  return scaled;
+}
+
 }  // namespace
 
 namespace detail {
@@ -99,7 +120,8 @@ class SphereOptimizer::Optimizer {
         dof_(fixed.size(), -1),
         threads_(detail::surface_threads(options.threads)),
         term_(second_term(options)) {
-    number_unknowns(rest, fixed);
+    const auto scaled = unit_scaled(rest);
+    number_unknowns(scaled, fixed);
     auto& common = cholesky_.cholmod();
     common.print = 0;  // a matrix that is not positive definite is an answer here, not an error
     // The unknowns come in geometric nested-dissection order (number_unknowns): CHOLMOD compares it, as
@@ -111,7 +133,7 @@ class SphereOptimizer::Optimizer {
     common.method[0].ordering = CHOLMOD_NATURAL;
     common.method[1].ordering = CHOLMOD_AMD;
     common.postorder = 0;
-    build_rest(rest);
+    build_rest(scaled);
   }
 
   // One optimization from `sphere` with `stage`'s weights, tolerance and iteration cap (the energy and

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "../../src/sphere/triangle_energy.hpp"
 #include "spheremap/geometry/predicates.hpp"
@@ -170,6 +171,44 @@ TEST(OptimizeOnSphere, RefusesAnInvalidStart) {
   EXPECT_THROW(optimize_on_sphere(ico.positions, ico.triangles, points, fixed), std::invalid_argument);
   EXPECT_THROW(optimize_on_sphere(ico.positions, ico.triangles, points, std::vector<char>(3, 0)),
                std::invalid_argument);
+}
+
+TEST(OptimizeOnSphere, RestSizeFromTinyToHugeGivesTheSameMap) {
+  // The energy compares shapes, not sizes: a surface scaled by a power of two gives the same map to the
+  // bit, even where its areas would overflow (2^1000: coordinates of 1e301) or underflow (2^-1000).
+  const Mesh ico = make_icosphere(2);
+  std::vector<char> fixed(ico.positions.size(), 0);
+  fixed[0] = 1;
+  SphereOptimizeOptions options;
+  options.energy = SphereEnergy::kLogAreaRatio;
+  const auto map_with = [&](double scale) {
+    std::vector<Vec3> rest;
+    for (const auto& p : ico.positions) rest.push_back(scale * p);
+    rest[5] = 1.5 * rest[5];  // a bump, so that the rest areas are not already equal
+    auto points = squashed(ico, 0.5);
+    const auto report = optimize_on_sphere(rest, ico.triangles, points, fixed, options);
+    EXPECT_LT(report.energy_after, report.energy_before) << scale;
+    EXPECT_TRUE(certify_sphere_map(ico, points).certified()) << scale;
+    return points;
+  };
+  const auto reference = map_with(1);
+  EXPECT_EQ(map_with(std::ldexp(1.0, 1000)), reference);
+  EXPECT_EQ(map_with(std::ldexp(1.0, -1000)), reference);
+  const auto huge = map_with(1e305);  // not a power of two: equal up to the rounding of the scaled input
+  for (std::size_t v = 0; v < huge.size(); ++v) EXPECT_LT(norm(huge[v] - reference[v]), 1e-9) << v;
+}
+
+TEST(OptimizeOnSphere, RefusesRestPositionsThatAreNotFinite) {
+  const Mesh ico = make_icosphere(1);
+  auto rest = ico.positions;
+  rest[3][1] = NAN;
+  auto points = ico.positions;
+  try {
+    optimize_on_sphere(rest, ico.triangles, points, std::vector<char>(points.size(), 0));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("rest position 3 is not finite"), std::string::npos) << error.what();
+  }
 }
 
 TEST(OptimizeOnSphere, NothingFreeIsAlreadyOptimal) {

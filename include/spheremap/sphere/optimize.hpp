@@ -80,8 +80,9 @@ struct SphereOptimizeReport {
 /// vector. `rest` holds the surface positions the energy compares with (one per vertex).
 /// Preconditions: rest.size() == sphere.size() == fixed.size(); indices valid; every point of `sphere`
 /// a unit vector, every triangle positively oriented on it (a valid map); the map's triangles are a
-/// closed triangulation of the sphere (for the rest scaling). Throws std::invalid_argument if the sizes
-/// disagree or the start is not valid. Deterministic.
+/// closed triangulation of the sphere (for the rest scaling). The rest's size does not matter (a copy
+/// scaled by a power of two is used: same map to the bit). Throws std::invalid_argument if the sizes
+/// disagree, a rest coordinate is not finite, or the start is not valid. Deterministic.
 SphereOptimizeReport optimize_on_sphere(const std::vector<Vec3>& rest, const std::vector<Triangle>& triangles,
                                         std::vector<Vec3>& sphere, const std::vector<char>& fixed,
                                         const SphereOptimizeOptions& options = {});
