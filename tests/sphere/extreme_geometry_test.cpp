@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "spheremap/geometry/superposition.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -38,6 +41,48 @@ TEST(SingularSystems, UniformWeightsMeetNone) {
   const SphereMap map = map_to_sphere(far_apex_bipyramid());
   EXPECT_EQ(map.diagnostics.solve.singular_systems, 0);
   EXPECT_TRUE(map.certificate.certified());
+}
+
+// Bipyramids over a nearly flat ring with apexes 1e17 to 1e69 away, found by a random search of such
+// shapes: with the weights asked for, the plain map's own system (not a re-weighting round's) is singular.
+Mesh bipyramid(std::vector<Vec3> positions) {
+  Mesh mesh;
+  const auto ring = static_cast<std::int32_t>(positions.size()) - 2;
+  mesh.positions = std::move(positions);
+  for (std::int32_t i = 0; i < ring; ++i) {
+    const std::int32_t j = (i + 1) % ring;
+    mesh.triangles.push_back({i, j, ring});
+    mesh.triangles.push_back({j, i, ring + 1});
+  }
+  return mesh;
+}
+
+TEST(SingularSystems, APlainSystemThatIsSingularIsSolvedWithUniformWeights) {
+  const Mesh mean_value_singular = bipyramid({{16.200120249036054, 0, 0},
+                                              {1.9389146078538271e-17, 0, 0.31664878546267788},
+                                              {-0.36947248574783409, -3.9858008219673789e-15, 4.5247329704410111e-17},
+                                              {-4.4836301816151282e-16, 0, -2.4407745889055832},
+                                              {-0.68528904318302164, 6.1825044424397481e+69, 0.90134102814302253},
+                                              {0.7407940705700653, -9.1612357645528767e+59, 0.68969054364596571}});
+  const Mesh cotangent_singular = bipyramid({{1.8924220596314605, -0.0005498604363613701, 0},
+                                             {0.025452550252548199, -0.0004097355311546984, 0.07833489489139342},
+                                             {-4.5719157309455749, 31747771049227.043, 3.3216912129886764},
+                                             {-0.76678202903218773, -1.6584583142091629e+17, -0.55709975380212551},
+                                             {0.045272489591829342, -1.7313650419861556e-06, -0.13933439590371127},
+                                             {0.44865166973482351, 1.2005390413667476e+32, 0.18539005634291783},
+                                             {-0.79625963682250267, -5.5809196192456779e+27, -0.22370225455214665}});
+  for (const auto& [mesh, weights] :
+       {std::pair{mean_value_singular, Weights::kMeanValue}, std::pair{cotangent_singular, Weights::kCotangent}}) {
+    MapOptions options;
+    options.weights = weights;
+    const SphereMap map = map_to_sphere(mesh, options);
+    const auto name = to_string(weights);
+    EXPECT_GE(map.diagnostics.solve.singular_systems, 1) << name << ": the mesh no longer reaches a singular system";
+    EXPECT_TRUE(map.diagnostics.solve.uniform_weights_instead) << name;
+    EXPECT_TRUE(map.certificate.certified()) << name;
+    const SphereMap uniform = map_to_sphere(mesh);  // what the fallback solved: no singular system
+    EXPECT_EQ(uniform.diagnostics.solve.singular_systems, 0) << name;
+  }
 }
 
 // A cube with one vertex moved to z = 1e300: its areas overflow.
