@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "../util/parallel.hpp"
+
 namespace spheremap {
 
 EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles) {
@@ -52,6 +54,40 @@ EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>
     }
   }
   return numbering;
+}
+
+std::vector<std::int32_t> opposite_half_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles,
+                                              int threads) {
+  if (triangles.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) / 3)
+    throw std::invalid_argument("opposite_half_edges: too many triangles for 32-bit half-edge indices");
+  const auto half_edges = static_cast<std::int32_t>(3 * triangles.size());
+  const auto from = [&](std::int32_t h) { return half_edge_origin(triangles, static_cast<std::size_t>(h)); };
+  const auto to = [&](std::int32_t h) { return half_edge_target(triangles, static_cast<std::size_t>(h)); };
+  // Half-edges grouped by their lower vertex (counting sort), then matched within the group.
+  std::vector<std::int32_t> start(vertex_count + 1, 0);
+  for (std::int32_t h = 0; h < half_edges; ++h) ++start[static_cast<std::size_t>(std::min(from(h), to(h))) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::int32_t> grouped(static_cast<std::size_t>(half_edges));
+  {
+    std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+    for (std::int32_t h = 0; h < half_edges; ++h)
+      grouped[static_cast<std::size_t>(fill[std::min(from(h), to(h))]++)] = h;
+  }
+  std::vector<std::int32_t> opposite(static_cast<std::size_t>(half_edges), -1);
+  detail::parallel_ranges(half_edges, 24576, threads, [&](std::int64_t first, std::int64_t last) {
+    for (auto h = static_cast<std::int32_t>(first); h < last; ++h) {
+      const std::int32_t low = std::min(from(h), to(h)), high = std::max(from(h), to(h));
+      std::int32_t match = -1, others = 0;
+      for (std::int32_t i = start[low]; i < start[low + 1]; ++i) {
+        const std::int32_t g = grouped[static_cast<std::size_t>(i)];
+        if (g == h || std::max(from(g), to(g)) != high) continue;
+        ++others;
+        if (from(g) == to(h)) match = g;
+      }
+      if (others == 1) opposite[static_cast<std::size_t>(h)] = match;
+    }
+  });
+  return opposite;
 }
 
 VertexRings build_vertex_rings(std::int32_t vertex_count, const std::vector<Triangle>& triangles) {

@@ -14,6 +14,7 @@
 #include "../util/parallel.hpp"
 #include "simplify_tuning.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap {
 namespace {
@@ -169,41 +170,13 @@ class Surface {
     longest_squared_ = high * high;
   }
 
-  // opp_: half-edges grouped by their smaller vertex (counting sort), then matched within the group. Its
-  // own function so that its scratch (an entry per half-edge, two per vertex) is gone before the rest of
-  // the surface is built.
+  // opp_: the half-edge across each edge, every edge shared by exactly two triangles in opposite directions.
   void pair_half_edges() {
-    const auto vertices = static_cast<std::int32_t>(p_.size());
-    const auto half_edges = static_cast<std::int32_t>(tri_.size() * 3);
-    std::vector<std::int32_t> start(static_cast<std::size_t>(vertices) + 1, 0);
-    for (std::int32_t h = 0; h < half_edges; ++h) ++start[static_cast<std::size_t>(std::min(from(h), to(h))) + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<std::int32_t> grouped(static_cast<std::size_t>(half_edges));
-    {
-      std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-      for (std::int32_t h = 0; h < half_edges; ++h)
-        grouped[static_cast<std::size_t>(fill[std::min(from(h), to(h))]++)] = h;
-    }
-    opp_.assign(static_cast<std::size_t>(half_edges), kDead);
-    for (std::int32_t v = 0; v < vertices; ++v) {
-      for (std::int32_t i = start[v]; i < start[v + 1]; ++i) {
-        const std::int32_t h = grouped[i];
-        if (opp_[h] != kDead) continue;
-        const std::int32_t other = std::max(from(h), to(h));
-        std::int32_t match = kDead, same = 0;
-        for (std::int32_t j = start[v]; j < start[v + 1]; ++j) {
-          const std::int32_t g = grouped[j];
-          if (g == h || std::max(from(g), to(g)) != other) continue;
-          ++same;
-          if (from(g) == to(h) && to(g) == from(h)) match = g;
-        }
-        if (same != 1 || match == kDead || opp_[match] != kDead)
-          throw std::invalid_argument(
-              "simplify_surface: the mesh is not a closed, consistently oriented 2-manifold (an edge is not shared by "
-              "exactly two triangles in opposite directions)");
-        opp_[h] = match, opp_[match] = h;
-      }
-    }
+    opp_ = opposite_half_edges(p_.size(), tri_, threads_);
+    if (std::find(opp_.begin(), opp_.end(), kDead) != opp_.end())
+      throw std::invalid_argument(
+          "simplify_surface: the mesh is not a closed, consistently oriented 2-manifold (an edge is not shared by "
+          "exactly two triangles in opposite directions)");
   }
 
   [[nodiscard]] std::int32_t from(std::int32_t h) const { return tri_[h / 3][h % 3]; }

@@ -34,6 +34,41 @@ TEST(NumberEdges, BothHalfEdgesOfAnEdgeShareADenseIdInVertexOrder) {
   for (const int count : seen) EXPECT_EQ(count, 2);
 }
 
+TEST(OppositeHalfEdges, PairsEveryEdgeOfAClosedMeshTheSameOnAnyNumberOfThreads) {
+  const Mesh mesh = make_icosphere(4);
+  const auto opposite = opposite_half_edges(mesh.positions.size(), mesh.triangles);
+  ASSERT_EQ(opposite.size(), 3 * mesh.triangles.size());
+  for (std::size_t h = 0; h < opposite.size(); ++h) {
+    const auto g = opposite[h];
+    ASSERT_GE(g, 0) << h;
+    EXPECT_EQ(opposite[static_cast<std::size_t>(g)], static_cast<std::int32_t>(h));
+    EXPECT_EQ(half_edge_origin(mesh.triangles, static_cast<std::size_t>(g)), half_edge_target(mesh.triangles, h));
+    EXPECT_EQ(half_edge_target(mesh.triangles, static_cast<std::size_t>(g)), half_edge_origin(mesh.triangles, h));
+  }
+  const Mesh large = make_icosphere(5);  // 61,440 half-edges: three ranges
+  const auto reference = opposite_half_edges(large.positions.size(), large.triangles, 1);
+  for (const int threads : {2, 3})
+    EXPECT_EQ(opposite_half_edges(large.positions.size(), large.triangles, threads), reference);
+}
+
+TEST(OppositeHalfEdges, NoneAcrossAHoleANonManifoldOrAMisorientedEdge) {
+  // Two triangles on edge (0, 1) in opposite directions, then what breaks the pairing.
+  std::vector<Triangle> triangles = {{0, 1, 2}, {1, 0, 3}};
+  auto opposite = opposite_half_edges(5, triangles);
+  EXPECT_EQ(opposite[0], 3);  // 0→1 across 1→0
+  EXPECT_EQ(opposite[3], 0);
+  for (const std::size_t h : {1, 2, 4, 5}) EXPECT_EQ(opposite[h], -1) << h;  // the boundary of the pair
+  triangles.push_back({0, 1, 4});  // a third triangle on the edge: non-manifold
+  opposite = opposite_half_edges(5, triangles);
+  EXPECT_EQ(opposite[0], -1);
+  EXPECT_EQ(opposite[3], -1);
+  EXPECT_EQ(opposite[6], -1);
+  triangles = {{0, 1, 2}, {0, 1, 3}};  // both 0→1: misoriented
+  opposite = opposite_half_edges(5, triangles);
+  EXPECT_EQ(opposite[0], -1);
+  EXPECT_EQ(opposite[3], -1);
+}
+
 TEST(NumberEdges, HalfEdgesWalkTheirTriangle) {
   const std::vector<Triangle> triangles{{4, 7, 9}};
   EXPECT_EQ(next_half_edge(0), 1u);

@@ -55,6 +55,15 @@ struct EdgeNumbering {
 /// Throws std::invalid_argument if there are 2^31 - 1 edges or more.
 EdgeNumbering number_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles);
 
+/// For every half-edge h (see next_half_edge), the half-edge of the triangle across its edge: the other
+/// half-edge between the same two vertices, running the other way; -1 where the edge is not shared by
+/// exactly two triangles in opposite directions (a hole, a non-manifold or a misoriented edge). Works on
+/// any triangle soup, from `threads` threads (the result does not depend on them).
+/// Preconditions: every index in [0, vertex_count). Throws std::invalid_argument if there are 2^31 or
+/// more half-edges.
+std::vector<std::int32_t> opposite_half_edges(std::size_t vertex_count, const std::vector<Triangle>& triangles,
+                                              int threads = 1);
+
 /// Breadth-first graph distances (in edges) from `source`; unreachable vertices get -1.
 /// Precondition: source in [0, rings.vertex_count()). Throws nothing beyond std::bad_alloc.
 std::vector<std::int32_t> graph_distances(const VertexRings& rings, std::int32_t source);
