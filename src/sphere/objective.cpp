@@ -143,6 +143,7 @@ void optimize_for_objective(const Mesh& mesh, InputStars& input, std::int32_t no
     report.outcome = ObjectiveOutcome::kOptimized;
     const double before = run == 0 ? step.energy_before : report.optimization.energy_before;
     step.iterations += report.optimization.iterations;
+    step.factorizations += report.optimization.factorizations;
     report.optimization = step;
     report.optimization.energy_before = before;
     report.stages = static_cast<int>(stage) + 1;

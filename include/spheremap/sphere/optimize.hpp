@@ -70,6 +70,7 @@ enum class OptimizeStop {
 
 struct SphereOptimizeReport {
   int iterations = 0;        // accepted Newton steps
+  int factorizations = 0;    // numeric factorizations of the Newton system (failed ones included)
   double energy_before = 0;  // of the start, per unit of the map's area
   double energy_after = 0;
   OptimizeStop stop_reason = OptimizeStop::kNone;
