@@ -33,34 +33,20 @@ inline double edge(const Vec3& a, const Vec3& b, double px, double py) {
   return (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
 }
 
-/// A screen triangle (a, b, c) with what the weights of its many samples share computed once: the corners' x and y
-/// and the edges' differences, held by value (through pointers they were loaded again for every sample, as the
-/// shading's stores might have changed them), with the same operations in the same order as edge(), so the same bits.
+/// A screen triangle (a, b, c) with its area computed once, for the weights of its many samples.
 struct ScreenTriangle {
-  double ax, ay, bx, by, cx, cy;              // the corners
-  double bc_x, bc_y, ca_x, ca_y, ab_x, ab_y;  // c - b, a - c, b - a
-  double area;                                // edge(a, b, c)
-  ScreenTriangle(const Vec3& a, const Vec3& b, const Vec3& c)
-      : ax(a[0]),
-        ay(a[1]),
-        bx(b[0]),
-        by(b[1]),
-        cx(c[0]),
-        cy(c[1]),
-        bc_x(c[0] - b[0]),
-        bc_y(c[1] - b[1]),
-        ca_x(a[0] - c[0]),
-        ca_y(a[1] - c[1]),
-        ab_x(b[0] - a[0]),
-        ab_y(b[1] - a[1]),
-        area(edge(a, b, c[0], c[1])) {}
+  const Vec3* a;
+  const Vec3* b;
+  const Vec3* c;
+  double area;  // edge(a, b, c)
+  ScreenTriangle(const Vec3& a_, const Vec3& b_, const Vec3& c_)
+      : a(&a_), b(&b_), c(&c_), area(edge(a_, b_, c_[0], c_[1])) {}
   /// The barycentric weights of the sample centre (x + 0.5, y + 0.5) (may be slightly outside [0, 1] on
-  /// edges: clamp before use), each edge(...) / area. Inline: the shading calls it for every sample.
+  /// edges: clamp before use). Inline: the shading calls it for every sample.
   [[nodiscard]] std::array<double, 3> weights(double x, double y) const {
     const double px = x + 0.5, py = y + 0.5;
     if (area == 0) return {1.0 / 3, 1.0 / 3, 1.0 / 3};
-    return {(bc_x * (py - by) - bc_y * (px - bx)) / area, (ca_x * (py - cy) - ca_y * (px - cx)) / area,
-            (ab_x * (py - ay) - ab_y * (px - ax)) / area};
+    return {edge(*b, *c, px, py) / area, edge(*c, *a, px, py) / area, edge(*a, *b, px, py) / area};
   }
 };
 
