@@ -168,16 +168,21 @@ std::vector<std::string> map_grid_tsvs(const Globe& globe, const std::vector<con
   detail::parallel_ranges(rows, 4, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
     std::vector<fmt::memory_buffer> out(tables);
     fmt::memory_buffer position, residues;
+    fmt::memory_buffer latitude;  // the row's, formatted once: it depends on the row alone
     for (auto row = static_cast<int>(first); row < last; ++row) {
+      // RowUnprojection gives unproject's points bit for bit.
+      const RowUnprojection unproject_row(grid.projection, plane_point(half, columns, rows, 0.5, row + 0.5).y);
+      latitude.clear();
       for (int column = 0; column < columns; ++column) {
-        const auto centre = unproject(grid.projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
+        const auto centre = unproject_row(plane_point(half, columns, rows, column + 0.5, row + 0.5).x);
         if (!centre) continue;
+        if (latitude.size() == 0) append_number(latitude, centre->latitude / kDegree, std::chars_format::fixed, 3);
         position.clear();  // row, column, latitude, longitude (degrees, 3 decimals)
         append_number(position, row);
         position.push_back('\t');
         append_number(position, column);
         position.push_back('\t');
-        append_number(position, centre->latitude / kDegree, std::chars_format::fixed, 3);
+        position.append(latitude.data(), latitude.data() + latitude.size());
         position.push_back('\t');
         append_number(position, centre->longitude / kDegree, std::chars_format::fixed, 3);
         position.push_back('\t');
