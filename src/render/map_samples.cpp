@@ -2,13 +2,14 @@
 // map_picture.hpp).
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <iterator>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <system_error>
 
-#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include "../util/parallel.hpp"
@@ -74,6 +75,21 @@ namespace {
 constexpr int kGridSubsamples = 4;  // per cell side
 
 using CellResidues = std::array<std::int32_t, kGridSubsamples * kGridSubsamples>;
+
+// Appends `value` as printf's %.<precision>f (fixed) or %.<precision>g (general) would write it: std::to_chars, which
+// is specified so, takes a fraction of fmt's instructions for a precision (fmt falls back to Dragon4 for many).
+// Precondition: the text fits in 64 characters (|value| < 1e50 for fixed).
+void append_number(fmt::memory_buffer& out, double value, std::chars_format format, int precision) {
+  char text[64];
+  const auto written = std::to_chars(text, text + sizeof text, value, format, precision);
+  if (written.ec != std::errc()) throw std::invalid_argument("append_number: the number does not fit");
+  out.append(text, written.ptr);
+}
+
+void append_number(fmt::memory_buffer& out, int value) {
+  char text[16];
+  out.append(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
 
 // Calls visit(triangle, weights) for each of the cell's points on the globe (the pixels of the fine samples it
 // covers), row by row.
@@ -152,13 +168,24 @@ std::vector<std::string> map_grid_tsvs(const Globe& globe, const std::vector<con
   detail::parallel_ranges(rows, 4, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
     std::vector<fmt::memory_buffer> out(tables);
     fmt::memory_buffer position, residues;
+    fmt::memory_buffer latitude;  // the row's, formatted once: it depends on the row alone
     for (auto row = static_cast<int>(first); row < last; ++row) {
+      // RowUnprojection gives unproject's points bit for bit.
+      const RowUnprojection unproject_row(grid.projection, plane_point(half, columns, rows, 0.5, row + 0.5).y);
+      latitude.clear();
       for (int column = 0; column < columns; ++column) {
-        const auto centre = unproject(grid.projection, plane_point(half, columns, rows, column + 0.5, row + 0.5));
+        const auto centre = unproject_row(plane_point(half, columns, rows, column + 0.5, row + 0.5).x);
         if (!centre) continue;
-        position.clear();
-        fmt::format_to(std::back_inserter(position), FMT_COMPILE("{}\t{}\t{:.3f}\t{:.3f}\t"), row, column,
-                       centre->latitude / kDegree, centre->longitude / kDegree);
+        if (latitude.size() == 0) append_number(latitude, centre->latitude / kDegree, std::chars_format::fixed, 3);
+        position.clear();  // row, column, latitude, longitude (degrees, 3 decimals)
+        append_number(position, row);
+        position.push_back('\t');
+        append_number(position, column);
+        position.push_back('\t');
+        position.append(latitude.data(), latitude.data() + latitude.size());
+        position.push_back('\t');
+        append_number(position, centre->longitude / kDegree, std::chars_format::fixed, 3);
+        position.push_back('\t');
         CellResidues under{};
         const int count = cell_residues(globe, grid, row, column, under);
         residues.clear();
@@ -172,7 +199,7 @@ std::vector<std::string> map_grid_tsvs(const Globe& globe, const std::vector<con
         for (std::size_t t = 0; t < tables; ++t) {
           out[t].append(position.data(), position.data() + position.size());
           const double value = cell_value(globe, *properties[t], grid, row, column);
-          if (!std::isnan(value)) fmt::format_to(std::back_inserter(out[t]), FMT_COMPILE("{:.6g}"), value);
+          if (!std::isnan(value)) append_number(out[t], value, std::chars_format::general, 6);  // as {:.6g}
           out[t].append(residues.data(), residues.data() + residues.size());
         }
       }
