@@ -2,6 +2,7 @@
 #include "spheremap/render/sphere_locator.hpp"
 
 #include "../util/parallel.hpp"
+#include "spheremap/topology/connectivity.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -101,35 +102,17 @@ void lay_out_grid(SphereLocator& l) {
   }
 }
 
-// The triangle across each edge (SphereLocator::neighbours), from the triangles around each vertex.
+// The triangle across each edge (SphereLocator::neighbours): edge k, (corner k + 1, corner k + 2), is
+// half-edge 3t + (k + 1) % 3.
 std::vector<std::array<std::int32_t, 3>> triangle_neighbours(std::size_t vertex_count,
                                                              const std::vector<Triangle>& triangles, int threads) {
-  std::vector<std::int32_t> first(vertex_count + 1, 0);
-  for (const Triangle& t : triangles)
-    for (const std::int32_t v : t) ++first[static_cast<std::size_t>(v) + 1];
-  for (std::size_t v = 0; v < vertex_count; ++v) first[v + 1] += first[v];
-  std::vector<std::int32_t> around(static_cast<std::size_t>(first[vertex_count]));
-  std::vector<std::int32_t> next(first.begin(), first.end() - 1);
+  const auto opposite = opposite_half_edges(vertex_count, triangles, threads);
+  std::vector<std::array<std::int32_t, 3>> neighbours(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (const std::int32_t v : triangles[t])
-      around[static_cast<std::size_t>(next[v]++)] = static_cast<std::int32_t>(t);
-  std::vector<std::array<std::int32_t, 3>> neighbours(triangles.size(), {-1, -1, -1});
-  detail::parallel_ranges(
-      static_cast<std::int64_t>(triangles.size()), 8192, threads, [&](std::int64_t begin, std::int64_t end) {
-        for (auto t = static_cast<std::size_t>(begin); t < static_cast<std::size_t>(end); ++t)
-          for (int k = 0; k < 3; ++k) {
-            // Edge (from, to) of t; the triangle across has (to, from).
-            const std::int32_t from = triangles[t][(k + 1) % 3], to = triangles[t][(k + 2) % 3];
-            int found = 0;
-            for (std::int32_t i = first[to]; i < first[to + 1]; ++i) {
-              const Triangle& u = triangles[static_cast<std::size_t>(around[static_cast<std::size_t>(i)])];
-              for (int j = 0; j < 3; ++j)
-                if (u[j] == to && u[(j + 1) % 3] == from)
-                  neighbours[t][k] = around[static_cast<std::size_t>(i)], ++found;
-            }
-            if (found != 1) neighbours[t][k] = -1;
-          }
-      });
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t g = opposite[3 * t + static_cast<std::size_t>((k + 1) % 3)];
+      neighbours[t][k] = g < 0 ? -1 : g / 3;
+    }
   return neighbours;
 }
 

@@ -25,8 +25,9 @@ struct SphereLocator {
   /// Per triangle (a, b, c): b × c, c × a, a × b, whose dot products with a point are its unnormalized
   /// barycentric weights (one read of 72 contiguous bytes per candidate instead of three scattered corners).
   std::vector<std::array<double, 9>> edge_normals;
-  /// Per triangle, the triangle across each edge: across (b, c), (c, a), (a, b), -1 where no triangle has that
-  /// edge reversed (a hole) or several do. The hinted search walks across them.
+  /// Per triangle, the triangle across each edge: across (b, c), (c, a), (a, b), -1 where the edge is not
+  /// shared by exactly two triangles in opposite directions (opposite_half_edges). The hinted search walks
+  /// across them.
   std::vector<std::array<std::int32_t, 3>> neighbours;
 };
 
