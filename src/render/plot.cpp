@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "markup.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/io/atomic_file.hpp"
 
@@ -243,20 +244,6 @@ std::string tick_label(double value, double step) {
   return fmt::format("{:.{}f}", value, decimals);
 }
 
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string hex(const Color& c) { return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]); }
 
 }  // namespace
@@ -341,7 +328,7 @@ std::string bar_chart_svg(const BarChart& chart, const PlotSize& size) {
   for (const std::string* line : {&chart.title, &chart.subtitle}) {
     if (line->empty()) continue;
     svg += fmt::format("<text class=\"title\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", size.width / 2,
-                       line_top + kCapHeight, xml_escape(*line));
+                       line_top + kCapHeight, render_detail::escape_markup(*line));
     line_top += kLineHeight;
   }
   for (std::size_t k = 0; k < l.y_ticks.size(); ++k) {
@@ -352,7 +339,7 @@ std::string bar_chart_svg(const BarChart& chart, const PlotSize& size) {
     svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\"/>\n", l.plot_left - kTickLength,
                        row, l.plot_left, row, hex(kPlotInk));
     svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", l.plot_left - kTickLength - 4,
-                       row + kCapHeight / 2, xml_escape(l.y_tick_labels[k]));
+                       row + kCapHeight / 2, render_detail::escape_markup(l.y_tick_labels[k]));
   }
   for (std::size_t i = 0; i < l.bars.size(); ++i) {
     const auto& b = l.bars[i];
@@ -360,19 +347,21 @@ std::string bar_chart_svg(const BarChart& chart, const PlotSize& size) {
       svg += fmt::format(
           "<rect class=\"bar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" stroke=\"{}\">"
           "<title>{}: {}</title></rect>\n",
-          b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0, hex(kPlotBarFill), hex(kBarEdge), xml_escape(chart.categories[i]),
-          chart.values[i]);
+          b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0, hex(kPlotBarFill), hex(kBarEdge),
+          render_detail::escape_markup(chart.categories[i]), chart.values[i]);
     else
       svg += fmt::format(
           "<rect class=\"bar\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"0\" fill=\"{}\"><title>{}: {}</title></rect>\n",
-          b.x0, b.y0, b.x1 - b.x0, hex(kPlotBarFill), xml_escape(chart.categories[i]), chart.values[i]);
+          b.x0, b.y0, b.x1 - b.x0, hex(kPlotBarFill), render_detail::escape_markup(chart.categories[i]),
+          chart.values[i]);
     const int centre = (b.x0 + b.x1) / 2;
     svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{3}\"/>\n", centre, l.plot_bottom,
                        l.plot_bottom + kTickLength / (i % static_cast<std::size_t>(l.label_every) == 0 ? 1 : 2),
                        hex(kPlotInk));
     if (i % static_cast<std::size_t>(l.label_every) == 0)
-      svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", centre,
-                         l.plot_bottom + kTickLength + 4 + kCapHeight, xml_escape(chart.categories[i]));
+      svg +=
+          fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", centre,
+                      l.plot_bottom + kTickLength + 4 + kCapHeight, render_detail::escape_markup(chart.categories[i]));
   }
   svg += fmt::format(
       "<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"{4}\"/>\n"
@@ -381,13 +370,13 @@ std::string bar_chart_svg(const BarChart& chart, const PlotSize& size) {
   if (!chart.x_label.empty())
     svg += fmt::format("<text class=\"x-label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
                        (l.plot_left + l.plot_right) / 2, size.height - kMargin - kLineHeight + kCapHeight,
-                       xml_escape(chart.x_label));
+                       render_detail::escape_markup(chart.x_label));
   if (!chart.y_label.empty()) {
     const int x = kMargin + kCapHeight, y = (l.plot_top + l.plot_bottom) / 2;
     svg += fmt::format(
         "<text class=\"y-label\" x=\"{0}\" y=\"{1}\" text-anchor=\"middle\" transform=\"rotate(-90 {0} "
         "{1})\">{2}</text>\n",
-        x, y, xml_escape(chart.y_label));
+        x, y, render_detail::escape_markup(chart.y_label));
   }
   svg += "</svg>\n";
   return svg;

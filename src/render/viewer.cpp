@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "markup.hpp"
 #include "spheremap/io/atomic_file.hpp"
 #include "viewer_page.hpp"
 #include "viewer_payload.hpp"
@@ -52,22 +53,6 @@ void check(const ViewerData& data) {
       refuse(fmt::format("vertex {} names atom {} of {}", v, a, data.atoms.size()));
   }
   check_properties(data);
-}
-
-// Text inside <title>: the five characters HTML gives a meaning to, as references.
-std::string escape_html(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 // JSON inside <script>: "<" could start "</script>" or "<!--", which end or change the element whatever the
@@ -117,7 +102,7 @@ std::string fill_template(std::string_view page, const std::string& title, const
 
 std::string viewer_html(const ViewerData& data) {
   check(data);
-  const std::string title = escape_html(detail::valid_utf8(data.title));
+  const std::string title = render_detail::escape_markup(detail::valid_utf8(data.title));
   return fill_template(detail::viewer_page_template(), title, data_elements(data));
 }
 
