@@ -60,33 +60,38 @@ std::vector<std::int32_t> opposite_half_edges(std::size_t vertex_count, const st
                                               int threads) {
   if (triangles.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) / 3)
     throw std::invalid_argument("opposite_half_edges: too many triangles for 32-bit half-edge indices");
-  const auto half_edges = static_cast<std::int32_t>(3 * triangles.size());
-  const auto from = [&](std::int32_t h) { return half_edge_origin(triangles, static_cast<std::size_t>(h)); };
-  const auto to = [&](std::int32_t h) { return half_edge_target(triangles, static_cast<std::size_t>(h)); };
-  // Half-edges grouped by their lower vertex (counting sort), then matched within the group.
-  std::vector<std::int32_t> start(vertex_count + 1, 0);
-  for (std::int32_t h = 0; h < half_edges; ++h) ++start[static_cast<std::size_t>(std::min(from(h), to(h))) + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::int32_t> grouped(static_cast<std::size_t>(half_edges));
+  // The triangles around each vertex (counting sort), then each half-edge a -> b looks among b's triangles
+  // for b -> a and for other triangles that hold a -> b: one short list per half-edge, read in parallel.
+  std::vector<std::int32_t> first(vertex_count + 1, 0);
+  for (const Triangle& t : triangles)
+    for (const std::int32_t v : t) ++first[static_cast<std::size_t>(v) + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<std::int32_t> around(static_cast<std::size_t>(first[vertex_count]));
   {
-    std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-    for (std::int32_t h = 0; h < half_edges; ++h)
-      grouped[static_cast<std::size_t>(fill[std::min(from(h), to(h))]++)] = h;
+    std::vector<std::int32_t> next(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      for (const std::int32_t v : triangles[t])
+        around[static_cast<std::size_t>(next[v]++)] = static_cast<std::int32_t>(t);
   }
-  std::vector<std::int32_t> opposite(static_cast<std::size_t>(half_edges), -1);
-  detail::parallel_ranges(half_edges, 24576, threads, [&](std::int64_t first, std::int64_t last) {
-    for (auto h = static_cast<std::int32_t>(first); h < last; ++h) {
-      const std::int32_t low = std::min(from(h), to(h)), high = std::max(from(h), to(h));
-      std::int32_t match = -1, others = 0;
-      for (std::int32_t i = start[low]; i < start[low + 1]; ++i) {
-        const std::int32_t g = grouped[static_cast<std::size_t>(i)];
-        if (g == h || std::max(from(g), to(g)) != high) continue;
-        ++others;
-        if (from(g) == to(h)) match = g;
-      }
-      if (others == 1) opposite[static_cast<std::size_t>(h)] = match;
-    }
-  });
+  std::vector<std::int32_t> opposite(3 * triangles.size(), -1);
+  detail::parallel_ranges(static_cast<std::int64_t>(triangles.size()), 8192, threads,
+                          [&](std::int64_t begin, std::int64_t end) {
+                            for (auto t = static_cast<std::size_t>(begin); t < static_cast<std::size_t>(end); ++t)
+                              for (std::size_t k = 0; k < 3; ++k) {
+                                const std::int32_t a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+                                if (a == b) continue;  // a degenerate edge has no triangle across
+                                std::int32_t match = -1, reversed = 0, same = 0;
+                                for (std::int32_t i = first[b]; i < first[b + 1]; ++i) {
+                                  const auto u = static_cast<std::size_t>(around[static_cast<std::size_t>(i)]);
+                                  for (std::size_t j = 0; j < 3; ++j) {
+                                    if (triangles[u][j] == b && triangles[u][(j + 1) % 3] == a)
+                                      ++reversed, match = static_cast<std::int32_t>(3 * u + j);
+                                    if (triangles[u][j] == a && triangles[u][(j + 1) % 3] == b) ++same;
+                                  }
+                                }
+                                if (reversed == 1 && same == 1) opposite[3 * t + k] = match;
+                              }
+                          });
   return opposite;
 }
 

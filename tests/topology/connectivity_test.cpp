@@ -63,6 +63,10 @@ TEST(OppositeHalfEdges, NoneAcrossAHoleANonManifoldOrAMisorientedEdge) {
   EXPECT_EQ(opposite[0], -1);
   EXPECT_EQ(opposite[3], -1);
   EXPECT_EQ(opposite[6], -1);
+  triangles = {{0, 0, 1}, {1, 0, 0}};  // degenerate edges (0, 0)
+  opposite = opposite_half_edges(5, triangles);
+  EXPECT_EQ(opposite[0], -1);
+  EXPECT_EQ(opposite[5], -1);
   triangles = {{0, 1, 2}, {0, 1, 3}};  // both 0→1: misoriented
   opposite = opposite_half_edges(5, triangles);
   EXPECT_EQ(opposite[0], -1);
