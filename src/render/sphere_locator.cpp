@@ -102,20 +102,6 @@ void lay_out_grid(SphereLocator& l) {
   }
 }
 
-// The triangle across each edge (SphereLocator::neighbours): edge k, (corner k + 1, corner k + 2), is
-// half-edge 3t + (k + 1) % 3.
-std::vector<std::array<std::int32_t, 3>> triangle_neighbours(std::size_t vertex_count,
-                                                             const std::vector<Triangle>& triangles, int threads) {
-  const auto opposite = opposite_half_edges(vertex_count, triangles, threads);
-  std::vector<std::array<std::int32_t, 3>> neighbours(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t g = opposite[3 * t + static_cast<std::size_t>((k + 1) % 3)];
-      neighbours[t][k] = g < 0 ? -1 : g / 3;
-    }
-  return neighbours;
-}
-
 }  // namespace
 
 SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
@@ -145,7 +131,7 @@ SphereLocator make_sphere_locator(const std::vector<Vec3>& vertices, const std::
                               l.edge_normals[t] = {n0[0], n0[1], n0[2], n1[0], n1[1], n1[2], n2[0], n2[1], n2[2]};
                             }
                           });
-  l.neighbours = triangle_neighbours(l.vertices.size(), triangles, detail::surface_threads(threads));
+  l.opposite = opposite_half_edges(l.vertices.size(), triangles, detail::surface_threads(threads));
   // Bands of rows side by side: each band's cells are its own, and each band takes the triangles in index order,
   // so every cell lists its triangles in index order whatever the number of bands.
   const int bands = std::min(l.rows, detail::surface_threads(threads));
@@ -251,7 +237,9 @@ SphereHit locate_on_sphere(const SphereLocator& l, const Vec3& direction, double
     // Well inside (rounding moves a weight by about 1e-16 of the sum): no other triangle of a one-to-one map has it.
     if (std::min({w0, w1, w2}) >= kHintMargin * total) return {hint, {w0 / total, w1 / total, w2 / total}};
     const int across = w0 <= w1 ? (w0 <= w2 ? 0 : 2) : (w1 <= w2 ? 1 : 2);
-    hint = l.neighbours[static_cast<std::size_t>(hint)][across];
+    // Edge `across` of the triangle, (corner across + 1, corner across + 2), is its half-edge across + 1.
+    const std::int32_t half_edge = l.opposite[3 * static_cast<std::size_t>(hint) + (across + 1) % 3];
+    hint = half_edge < 0 ? -1 : half_edge / 3;
   }
   return locate_on_sphere(l, direction, theta, phi);
 }

@@ -21,6 +21,7 @@
 #include "spheremap/render/plot.hpp"
 #include "spheremap/render/viewer_data.hpp"
 #include "spheremap/shapes/shapes.hpp"
+#include "spheremap/topology/connectivity.hpp"
 
 namespace spheremap {
 namespace {
@@ -164,27 +165,17 @@ TEST(SphereLocator, AHintChangesNothingOnAOneToOneMap) {
   EXPECT_GT(hinted, 20000);
 }
 
-TEST(SphereLocator, NeighboursShareTheEdgeAcross) {
+TEST(SphereLocator, KeepsTheHalfEdgeAcrossEachEdge) {
   const Mesh sphere = make_icosphere(2);
   SphereLocator locator = make_sphere_locator(sphere.positions, sphere.triangles);
-  ASSERT_EQ(locator.neighbours.size(), sphere.triangles.size());
-  for (std::size_t t = 0; t < sphere.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t across = locator.neighbours[t][k];
-      ASSERT_GE(across, 0);
-      const Triangle& u = sphere.triangles[static_cast<std::size_t>(across)];
-      const std::int32_t from = sphere.triangles[t][(k + 1) % 3], to = sphere.triangles[t][(k + 2) % 3];
-      bool reversed = false;
-      for (int j = 0; j < 3; ++j) reversed = reversed || (u[j] == to && u[(j + 1) % 3] == from);
-      EXPECT_TRUE(reversed) << "triangle " << t << " edge " << k;
-    }
+  EXPECT_EQ(locator.opposite, opposite_half_edges(sphere.positions.size(), sphere.triangles));
+  ASSERT_EQ(locator.opposite.size(), 3 * sphere.triangles.size());
+  for (const std::int32_t g : locator.opposite) EXPECT_GE(g, 0);
   // A hole: the triangles around a removed one have no neighbour there.
   Mesh open = sphere;
   open.triangles.pop_back();
   locator = make_sphere_locator(open.positions, open.triangles);
-  int missing = 0;
-  for (const auto& n : locator.neighbours) missing += static_cast<int>(std::count(n.begin(), n.end(), -1));
-  EXPECT_EQ(missing, 3);
+  EXPECT_EQ(std::count(locator.opposite.begin(), locator.opposite.end(), -1), 3);
 }
 
 TEST(SphereLocator, RefusesAnIndexOutOfRange) {

@@ -25,10 +25,10 @@ struct SphereLocator {
   /// Per triangle (a, b, c): b × c, c × a, a × b, whose dot products with a point are its unnormalized
   /// barycentric weights (one read of 72 contiguous bytes per candidate instead of three scattered corners).
   std::vector<std::array<double, 9>> edge_normals;
-  /// Per triangle, the triangle across each edge: across (b, c), (c, a), (a, b), -1 where the edge is not
-  /// shared by exactly two triangles in opposite directions (opposite_half_edges). The hinted search walks
-  /// across them.
-  std::vector<std::array<std::int32_t, 3>> neighbours;
+  /// Per half-edge (3 * triangle + corner), the half-edge across its edge, -1 where the edge is not shared
+  /// by exactly two triangles in opposite directions (opposite_half_edges): the hinted search walks across
+  /// them to the triangle half-edge / 3.
+  std::vector<std::int32_t> opposite;
 };
 
 /// The triangle under a point and the point's barycentric weights in it (>= 0, summing to 1): the weights of
