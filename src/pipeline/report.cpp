@@ -269,7 +269,13 @@ nlohmann::json objective_json(const ObjectiveReport& objective) {
                          {"energy_before", o.energy_before},
                          {"energy_after", o.energy_after}};
   if (objective.energy != SphereEnergy::kSymmetricDirichlet) json["stages"] = objective.stages;
-  if (objective.energy == SphereEnergy::kLogAreaRatio) json["shape_weight"] = objective.shape_weight;
+  if (objective.energy == SphereEnergy::kLogAreaRatio) {
+    json["shape_weight"] = objective.shape_weight;
+    json["coarse_start"] = objective.coarse_levels == 0 ? nlohmann::json(nullptr)
+                                                        : nlohmann::json{{"vertices", objective.coarse_vertices},
+                                                                         {"levels", objective.coarse_levels},
+                                                                         {"iterations", objective.coarse_iterations}};
+  }
   return json;
 }
 

@@ -168,6 +168,13 @@ class SphereOptimizer::Optimizer {
     return report;
   }
 
+  double unit_energy(const std::vector<Vec3>& points) const {
+    if (points.size() != dof_.size())
+      throw std::invalid_argument("SphereOptimizer::energy: " + std::to_string(points.size()) + " points for " +
+                                  std::to_string(dof_.size()) + " vertices");
+    return energy(points) / total_area_;
+  }
+
   double energy(const std::vector<Vec3>& points) const {
     const auto count = static_cast<std::int64_t>(triangles_.size());
     std::vector<double> partial(static_cast<std::size_t>((count + kChunk - 1) / kChunk), 0.0);
@@ -517,6 +524,8 @@ SphereOptimizer::~SphereOptimizer() = default;
 SphereOptimizeReport SphereOptimizer::run(std::vector<Vec3>& sphere, const SphereOptimizeOptions& options) {
   return optimizer_->run(sphere, options);
 }
+
+double SphereOptimizer::energy(const std::vector<Vec3>& sphere) const { return optimizer_->unit_energy(sphere); }
 
 }  // namespace detail
 

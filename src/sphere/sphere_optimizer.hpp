@@ -27,6 +27,11 @@ class SphereOptimizer {
   /// the constructor's options and these. Preconditions and throws as optimize_on_sphere's.
   SphereOptimizeReport run(std::vector<Vec3>& sphere, const SphereOptimizeOptions& options);
 
+  /// The energy of `sphere` (one unit vector per vertex) per unit of the map's area, with the weights of
+  /// the last run (the constructor's before any): what a run's report gives as energy_before. +inf when a
+  /// triangle is not positively oriented. Throws std::invalid_argument if the count of points is wrong.
+  double energy(const std::vector<Vec3>& sphere) const;
+
  private:
   class Optimizer;
   std::unique_ptr<Optimizer> optimizer_;

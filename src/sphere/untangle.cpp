@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "../util/parallel.hpp"
 #include "spheremap/geometry/predicates.hpp"
@@ -156,7 +158,7 @@ class Untangler {
     return false;
   }
 
-  std::int64_t run(int max_sweeps) {
+  std::int64_t run(int max_sweeps, const std::vector<char>& fixed) {
     std::int64_t moves = 0;
     int neighbourhood = 0;  // 0: vertices of bad triangles; k: plus their k-ring
     // Which triangles are bad, kept up to date: a triangle's badness depends on its corners only, so
@@ -184,7 +186,7 @@ class Untangler {
       }
       moved_vertices.clear();
       for (std::int32_t v = 0; v < static_cast<std::int32_t>(active.size()); ++v)
-        if (active[v] && move(v)) moved_vertices.push_back(v);
+        if (active[v] && (fixed.empty() || !fixed[v]) && move(v)) moved_vertices.push_back(v);
       for (const auto v : moved_vertices)
         for (auto slot = rings_.offsets[v]; slot < rings_.offsets[v + 1]; ++slot) {
           const auto t = star_triangle_[static_cast<std::size_t>(slot)];
@@ -230,9 +232,13 @@ UntanglingFrame untangling_frame(const Mesh& surface, const VertexRings& rings) 
 }
 
 std::int64_t untangle_on_sphere(const Mesh& surface, const VertexRings& rings, const UntanglingFrame& frame,
-                                std::vector<Vec3>& sphere, double collapse_floor, int max_sweeps) {
+                                std::vector<Vec3>& sphere, double collapse_floor, int max_sweeps,
+                                const std::vector<char>& fixed) {
+  if (!fixed.empty() && fixed.size() != sphere.size())
+    throw std::invalid_argument("untangle_on_sphere: " + std::to_string(fixed.size()) + " fixed flags for " +
+                                std::to_string(sphere.size()) + " points");
   Untangler untangler(surface, rings, frame, sphere, collapse_floor);
-  return untangler.run(max_sweeps);
+  return untangler.run(max_sweeps, fixed);
 }
 
 }  // namespace spheremap::detail

@@ -28,8 +28,10 @@ UntanglingFrame untangling_frame(const Mesh& surface, const VertexRings& rings);
 /// triangles, found in a gnomonic chart where great circles are straight lines. A move is kept only if
 /// it raises that smallest ratio. When a sweep stalls, the next one also moves the neighbours.
 /// Returns the number of moves made. `sphere` holds unit vectors and is updated in place.
-/// `frame` is untangling_frame(surface, rings).
+/// `frame` is untangling_frame(surface, rings). The vertices marked in `fixed` (empty: none; else one
+/// flag per point) never move. Throws std::invalid_argument if `fixed` has another size.
 std::int64_t untangle_on_sphere(const Mesh& surface, const VertexRings& rings, const UntanglingFrame& frame,
-                                std::vector<Vec3>& sphere, double collapse_floor, int max_sweeps);
+                                std::vector<Vec3>& sphere, double collapse_floor, int max_sweeps,
+                                const std::vector<char>& fixed = {});
 
 }  // namespace spheremap::detail

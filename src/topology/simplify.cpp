@@ -13,6 +13,7 @@
 
 #include "../util/parallel.hpp"
 #include "simplify_tuning.hpp"
+#include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
 #include "spheremap/topology/connectivity.hpp"
 
@@ -158,6 +159,14 @@ class Surface {
     unflippable_.assign(tri_.size(), 0);
     skip_unflippable_ = detail::simplify_skips_known_unflippable_edges();
     for (std::size_t t = 0; t < tri_.size(); ++t) quality_[t] = triangle_cosine(static_cast<std::int32_t>(t));
+    if (!options.oriented_on.empty()) {
+      if (options.oriented_on.size() != p_.size())
+        throw std::invalid_argument("simplify_surface: oriented_on has " + std::to_string(options.oriented_on.size()) +
+                                    " points for " + std::to_string(p_.size()) + " vertices");
+      for (const auto& t : tri_)
+        if (!keeps_orientation(t[0], t[1], t[2]))
+          throw std::invalid_argument("simplify_surface: a triangle is not positively oriented on oriented_on");
+    }
     kept_.assign(static_cast<std::size_t>(vertices), false);
     for (const auto v : options.kept_vertices) {
       if (v < 0 || v >= vertices) throw std::invalid_argument("simplify_surface: a kept vertex does not exist");
@@ -220,6 +229,12 @@ class Surface {
     }
   }
 
+  // The triangle (a, b, c) is positively oriented on options.oriented_on (or that is not asked).
+  [[nodiscard]] bool keeps_orientation(std::int32_t a, std::int32_t b, std::int32_t c) const {
+    const auto& q = options_.oriented_on;
+    return q.empty() || orientation_sign(q[a], q[b], q[c]) > 0;
+  }
+
   // normal . reference >= cos(max turn) |normal| |reference|, without square roots (the turn is below 90
   // degrees, so both sides are positive when it holds).
   [[nodiscard]] bool faces_within_turn(const Vec3& normal, const Vec3& reference, double reference_squared) const {
@@ -269,6 +284,7 @@ class Surface {
       const double old_cosine = old_cosines[i];
       old_worst = std::max(old_worst, old_cosine);
       if (i == j || next == j) continue;  // the two triangles that vanish
+      if (!keeps_orientation(ring[j], ring[i], ring[next])) return false;
       const Vec3 new_normal = cross(p1 - pv, p2 - pv);
       if (old_cosine < kSliverCosine) {
         const Vec3 old_normal = cross(p1 - pu, p2 - pu);
@@ -392,6 +408,7 @@ class Surface {
         !faces_within_turn(cross(pb - pd, pc - pd), quad_area, quad_area_squared))
       return false;
     if (!(segment_distance(pa, pb, pc, pd) <= options_.max_error)) return false;
+    if (!keeps_orientation(c, a, d) || !keeps_orientation(d, b, c)) return false;
     // t1 = (a, b, c) and t2 = (b, a, d) become (c, a, d) and (d, b, c).
     const std::int32_t t1 = h / 3, t2 = back / 3;
     const std::int32_t ca = opp_[3 * t1 + previous_corner(h % 3)], bc = opp_[3 * t1 + next_corner(h % 3)];

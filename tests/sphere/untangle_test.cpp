@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
+#include <vector>
 
 #include "../../src/sphere/untangle.hpp"
 #include "spheremap/geometry/vec.hpp"
@@ -76,6 +78,29 @@ TEST(Untangling, OneFrameServesSeveralMapsAsAFreshOneWould) {
     EXPECT_EQ(with_shared, with_fresh) << "vertex " << v;
     EXPECT_TRUE(certify_sphere_map(mesh, with_shared).certified()) << "vertex " << v;
   }
+}
+
+// A fixed vertex stays where it is, to the bit, even when it is the one whose move would undo the fold:
+// its neighbours move instead (the coarse start keeps the poles so).
+TEST(Untangling, FixedVerticesNeverMove) {
+  const Mesh mesh = flipped_icosphere();
+  const auto n = static_cast<std::int32_t>(mesh.positions.size());
+  const VertexRings rings = build_vertex_rings(n, mesh.triangles);
+  const std::int32_t v = 20000;
+  std::vector<Vec3> sphere = folded_at(mesh, rings, v);
+  ASSERT_GT(certify_sphere_map(mesh, sphere).folded, 0);
+  const Vec3 where = sphere[v];
+  std::vector<char> fixed(sphere.size(), 0);
+  fixed[v] = 1;
+  const auto moves = detail::untangle_on_sphere(mesh, rings, detail::untangling_frame(mesh, rings), sphere,
+                                                kDefaultCollapseFloor, 200, fixed);
+  EXPECT_GT(moves, 0);
+  EXPECT_EQ(sphere[v], where);
+  EXPECT_EQ(certify_sphere_map(mesh, sphere).folded, 0);
+  fixed.pop_back();
+  EXPECT_THROW(detail::untangle_on_sphere(mesh, rings, detail::untangling_frame(mesh, rings), sphere,
+                                          kDefaultCollapseFloor, 200, fixed),
+               std::invalid_argument);
 }
 
 }  // namespace

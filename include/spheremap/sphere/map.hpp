@@ -167,6 +167,11 @@ struct ObjectiveReport {
   /// goal is missed; 1 for the others) and, for the area objective, the last stage's shape weight.
   int stages = 0;
   double shape_weight = 0;
+  /// The area objective's coarse start on large meshes (0 when none was made): the vertices of the
+  /// coarse mesh optimized first, the coarse levels, their Newton steps (not in `optimization`).
+  std::int64_t coarse_vertices = 0;
+  int coarse_levels = 0;
+  int coarse_iterations = 0;
 };
 
 /// How the map was made: for the report and for tuning, not needed to use the map.

@@ -33,6 +33,10 @@ struct SimplifyOptions {
   int threads = 0;
   /// Vertices that must stay (e.g. poles chosen by the user); indices into the input.
   std::vector<std::int32_t> kept_vertices;
+  /// If not empty, one point per vertex (e.g. a map of the mesh onto the sphere) on which every input
+  /// triangle is positively oriented (orientation_sign > 0): every collapse and flip keeps the triangles
+  /// it makes so, and the points of the kept vertices are then a valid map of the result too.
+  std::vector<Vec3> oriented_on;
 };
 
 struct SimplifyReport {
@@ -66,7 +70,8 @@ struct SimplifyReport {
 /// Preconditions: the mesh is closed and 2-manifold with consistently oriented components (each edge in
 /// exactly two triangles, in opposite directions; each vertex's triangles a single fan) and has no
 /// unreferenced vertex. Throws std::invalid_argument otherwise, if an option is negative or not finite,
-/// max_normal_change_degrees is not below 90, or a kept vertex does not exist.
+/// max_normal_change_degrees is not below 90, a kept vertex does not exist, or oriented_on is neither empty
+/// nor one point per vertex with every triangle positively oriented on it.
 /// The mesh is taken by value: a caller done with it moves it in, and its triangles become the working
 /// copy instead of being copied (a fine molecular surface has tens of millions of triangles).
 Mesh simplify_surface(Mesh mesh, const SimplifyOptions& options, SimplifyReport* report = nullptr);
