@@ -2,6 +2,7 @@
 // as value_at and colour_of(value_at(...)) give them, with a categorical property's colours looked up per vertex once.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -35,21 +36,43 @@ inline double sample_value(const Globe& globe, const SurfaceProperty& property, 
 
 class SampleColours {
  public:
+  /// How much a channel (0-255) may vary between a triangle's corners for its colours to count as smooth.
+  static constexpr int kSmoothSpread = 16;
+
   /// Preconditions: `property` belongs to `globe`; both outlive this.
   SampleColours(const Globe& globe, const SurfaceProperty& property, const ValueRange& range)
-      : globe_(&globe), property_(&property), range_(range), table_(&colour_table(property.info.scale)) {
-    // value_at gives a categorical property's nearest vertex value (also when it is NaN).
-    if (property.info.scale != ScaleKind::categorical) return;
+      : globe_(&globe),
+        property_(&property),
+        range_(range),
+        table_(&colour_table(property.info.scale)),
+        categorical_(property.info.scale == ScaleKind::categorical) {
     vertex_.reserve(property.values.size());
     for (const double v : property.values) vertex_.push_back(colour_of(property.info.scale, range, v));
   }
 
   /// colour_of(scale, range, value_at(globe, property, triangle, weights)). Precondition: triangle >= 0.
   [[nodiscard]] Rgb8 operator()(std::int32_t triangle, const std::array<float, 3>& weights) const {
-    if (!vertex_.empty()) return vertex_[globe_->triangles[triangle][nearest_corner(weights)]];
+    // value_at gives a categorical property's nearest vertex value (also when it is NaN).
+    if (categorical_) return vertex_[globe_->triangles[triangle][nearest_corner(weights)]];
     // colour_of with its table looked up once.
     const int index = colour_index(property_->info.scale, range_, sample_value(*globe_, *property_, triangle, weights));
     return index < 0 ? kMissingValueColour : (*table_)[index];
+  }
+
+  /// Whether the colour varies little and continuously across `triangle`, so that one sample stands for several:
+  /// a categorical property whose corners have one colour; any other whose corners all have a value and colours
+  /// within kSmoothSpread of each other in every channel (a steep or saturating stretch of the scale is not).
+  /// Precondition: triangle >= 0.
+  [[nodiscard]] bool smooth(std::int32_t triangle) const {
+    const Triangle& t = globe_->triangles[triangle];
+    if (categorical_) return vertex_[t[0]] == vertex_[t[1]] && vertex_[t[1]] == vertex_[t[2]];
+    if (std::isnan(property_->values[t[0]]) || std::isnan(property_->values[t[1]]) ||
+        std::isnan(property_->values[t[2]]))
+      return false;
+    const auto spread = [](int a, int b, int c) { return std::max({a, b, c}) - std::min({a, b, c}); };
+    const Rgb8 &a = vertex_[t[0]], &b = vertex_[t[1]], &c = vertex_[t[2]];
+    return spread(a.r, b.r, c.r) <= kSmoothSpread && spread(a.g, b.g, c.g) <= kSmoothSpread &&
+           spread(a.b, b.b, c.b) <= kSmoothSpread;
   }
 
  private:
@@ -57,7 +80,8 @@ class SampleColours {
   const SurfaceProperty* property_;
   ValueRange range_;
   const ColourTable* table_;
-  std::vector<Rgb8> vertex_;  // categorical: the colour of each vertex's value; empty otherwise
+  bool categorical_;
+  std::vector<Rgb8> vertex_;  // the colour of each vertex's value
 };
 
 }  // namespace spheremap::render_detail
