@@ -48,12 +48,29 @@ class SampleColours {
         categorical_(property.info.scale == ScaleKind::categorical) {
     vertex_.reserve(property.values.size());
     for (const double v : property.values) vertex_.push_back(colour_of(property.info.scale, range, v));
+    if (categorical_ || !(range.hi > range.lo)) return;
+    // colour_index's position on the table, (value - lo) / (hi - lo) * 256, of every vertex: interpolated directly.
+    scaled_.reserve(property.values.size());
+    const double per_unit = kColourTableSize / (range.hi - range.lo);
+    for (const double v : property.values) scaled_.push_back((v - range.lo) * per_unit);
   }
 
-  /// colour_of(scale, range, value_at(globe, property, triangle, weights)). Precondition: triangle >= 0.
+  /// colour_of(scale, range, value_at(globe, property, triangle, weights)), up to rounding where the value falls
+  /// on the edge of one of the table's bins. Precondition: triangle >= 0.
   [[nodiscard]] Rgb8 operator()(std::int32_t triangle, const std::array<float, 3>& weights) const {
     // value_at gives a categorical property's nearest vertex value (also when it is NaN).
-    if (categorical_) return vertex_[globe_->triangles[triangle][nearest_corner(weights)]];
+    const Triangle& t = globe_->triangles[triangle];
+    if (categorical_) return vertex_[t[nearest_corner(weights)]];
+    if (!scaled_.empty()) {
+      // The table position interpolated like the value (colour_index's rule on it, the same up to rounding); a
+      // missing or infinite corner value takes the general path below.
+      const double position = (weights[0] * scaled_[t[0]] + weights[1] * scaled_[t[1]] + weights[2] * scaled_[t[2]]) /
+                              (static_cast<double>(weights[0]) + weights[1] + weights[2]);
+      if (std::isfinite(position)) {
+        if (!(position > 0)) return (*table_)[0];
+        return (*table_)[std::min(static_cast<int>(std::min(position, 1e9)), kColourTableSize - 1)];
+      }
+    }
     // colour_of with its table looked up once.
     const int index = colour_index(property_->info.scale, range_, sample_value(*globe_, *property_, triangle, weights));
     return index < 0 ? kMissingValueColour : (*table_)[index];
@@ -81,7 +98,8 @@ class SampleColours {
   ValueRange range_;
   const ColourTable* table_;
   bool categorical_;
-  std::vector<Rgb8> vertex_;  // the colour of each vertex's value
+  std::vector<Rgb8> vertex_;    // the colour of each vertex's value
+  std::vector<double> scaled_;  // continuous scales with hi > lo: each vertex's table position; empty otherwise
 };
 
 }  // namespace spheremap::render_detail
