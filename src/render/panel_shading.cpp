@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "../util/parallel.hpp"
 
@@ -30,7 +31,9 @@ bool share_a_corner(const Triangle& a, const Triangle& b) {
   return false;
 }
 
-PixelTriangles pixel_triangles(const IdBuffer& buffer, const std::vector<Triangle>& triangles, int x, int y, int ss) {
+// `Ss` is int, or std::integral_constant for the usual supersampling (its loops then unrolled).
+template <typename Ss>
+PixelTriangles pixel_triangles(const IdBuffer& buffer, const std::vector<Triangle>& triangles, int x, int y, Ss ss) {
   PixelTriangles p;
   const std::int32_t* first = buffer.triangle.data() + static_cast<std::size_t>(y) * ss * buffer.width + x * ss;
   for (int sy = 0; sy < ss; ++sy) {
@@ -66,14 +69,15 @@ std::vector<std::vector<std::uint32_t>> shade_panel(const IdBuffer& buffer, int 
                                                     const std::vector<SampleColours>& colours,
                                                     const std::vector<std::uint64_t>& smooth, int threads) {
   if (colours.size() > kMaxShadedFigures) throw std::invalid_argument("shade_panel: more than 64 colourings");
-  const int ss = supersampling;
   const int sw = buffer.width;
   const std::size_t figures = colours.size();
   const std::uint64_t every_figure = figures == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << figures) - 1;
   std::vector<std::vector<std::uint32_t>> pixels(figures,
                                                  std::vector<std::uint32_t>(static_cast<std::size_t>(width) * height));
   if (screen.empty() || figures == 0) return pixels;
-  detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
+  // The rows first..last; `ss_value` is the supersampling, as a compile-time constant for the usual one.
+  const auto shade_rows = [&](auto ss_value, std::int64_t first, std::int64_t last) {
+    const int ss = ss_value;
     std::vector<std::array<double, 3>> sums(figures);  // r, g, b of each figure's pixel
     // The triangle of the previous sample and what its samples share (most samples lie in their neighbour's).
     std::int32_t current = -1;
@@ -105,7 +109,7 @@ std::vector<std::vector<std::uint32_t>> shade_panel(const IdBuffer& buffer, int 
         // One piece of smooth surface under the pixel: shaded once, at the centre, in the triangle that holds it
         // (the first of the pixel's that does, else the one it is least outside), in each figure whose colours are
         // smooth on all of the pixel's triangles; per sample in the others.
-        const PixelTriangles under = pixel_triangles(buffer, triangles, x, y, ss);
+        const PixelTriangles under = pixel_triangles(buffer, triangles, x, y, ss_value);
         std::uint64_t once = under.count > 0 ? every_figure : 0;
         for (int k = 0; k < under.count; ++k) once &= smooth[static_cast<std::size_t>(under.triangle[k])];
         if (once != 0) {
@@ -164,6 +168,12 @@ std::vector<std::vector<std::uint32_t>> shade_panel(const IdBuffer& buffer, int 
           if ((once >> f & 1) == 0)
             pixels[f][at] = (alpha << 24) | (byte(sums[f][0]) << 16) | (byte(sums[f][1]) << 8) | byte(sums[f][2]);
       }
+  };
+  detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
+    if (supersampling == 2)
+      shade_rows(std::integral_constant<int, 2>{}, first, last);
+    else
+      shade_rows(supersampling, first, last);
   });
   return pixels;
 }

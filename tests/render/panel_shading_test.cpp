@@ -114,20 +114,23 @@ std::uint32_t expected_pixel(const Scene& s, const SampleColours& colours, int x
          (round_half_up(sum[1] / n) << 8) | round_half_up(sum[2] / n);
 }
 
-TEST(PanelShading, APixelOnOnePieceOfSurfaceIsShadedAtItsCentreAndAnEdgePixelPerSample) {
-  constexpr int kSide = 90, kSs = 2;
-  const Scene s = sphere_scene(kSide, kSs);
+// Supersampling 2 (the default, which shade_panel compiles apart) and 3.
+class PanelShading : public testing::TestWithParam<int> {};
+
+TEST_P(PanelShading, APixelOnOnePieceOfSurfaceIsShadedAtItsCentreAndAnEdgePixelPerSample) {
+  constexpr int kSide = 90;
+  const int ss = GetParam();
+  const Scene s = sphere_scene(kSide, ss);
   const SurfaceProperty& x = *find_globe_property(s.globe, "x");
   const SurfaceProperty& octant = *find_globe_property(s.globe, "octant");
   const std::vector<SampleColours> colours{SampleColours(s.globe, x, *x.info.default_range),
                                            SampleColours(s.globe, octant, picture_range(octant, std::nullopt))};
   const std::vector<std::uint64_t> smooth = smooth_triangles(colours, s.globe.triangles.size());
-  const auto pixels =
-      shade_panel(s.buffer, kSide, kSide, kSs, s.screen, s.globe.triangles, s.light, colours, smooth, 1);
+  const auto pixels = shade_panel(s.buffer, kSide, kSide, ss, s.screen, s.globe.triangles, s.light, colours, smooth, 1);
   ASSERT_EQ(pixels.size(), 2u);
-  EXPECT_EQ(pixels, shade_panel(s.buffer, kSide, kSide, kSs, s.screen, s.globe.triangles, s.light, colours, smooth, 2));
+  EXPECT_EQ(pixels, shade_panel(s.buffer, kSide, kSide, ss, s.screen, s.globe.triangles, s.light, colours, smooth, 2));
   // Each figure alone gives what it gives beside the other.
-  EXPECT_EQ(pixels[0], shade_panel(s.buffer, kSide, kSide, kSs, s.screen, s.globe.triangles, s.light, {colours[0]},
+  EXPECT_EQ(pixels[0], shade_panel(s.buffer, kSide, kSide, ss, s.screen, s.globe.triangles, s.light, {colours[0]},
                                    smooth_triangles({colours[0]}, s.globe.triangles.size()), 1)
                            .front());
   int once = 0, in_several = 0, per_sample = 0, octant_boundary = 0;
@@ -135,9 +138,9 @@ TEST(PanelShading, APixelOnOnePieceOfSurfaceIsShadedAtItsCentreAndAnEdgePixelPer
     for (int px = 0; px < kSide; ++px) {
       const std::size_t i = static_cast<std::size_t>(y) * kSide + px;
       for (std::size_t f = 0; f < 2; ++f)
-        ASSERT_EQ(pixels[f][i], expected_pixel(s, colours[f], px, y, kSs))
+        ASSERT_EQ(pixels[f][i], expected_pixel(s, colours[f], px, y, ss))
             << "figure " << f << " at " << px << ", " << y;
-      const auto x_once = shaded_once(s, colours[0], px, y, kSs), octant_once = shaded_once(s, colours[1], px, y, kSs);
+      const auto x_once = shaded_once(s, colours[0], px, y, ss), octant_once = shaded_once(s, colours[1], px, y, ss);
       once += !x_once.empty();
       in_several += x_once.size() > 1;
       per_sample += x_once.empty() && (pixels[0][i] >> 24) != 0;
@@ -150,6 +153,8 @@ TEST(PanelShading, APixelOnOnePieceOfSurfaceIsShadedAtItsCentreAndAnEdgePixelPer
   EXPECT_GT(per_sample, 150);
   EXPECT_GT(octant_boundary, 20);
 }
+
+INSTANTIATE_TEST_SUITE_P(Supersampling, PanelShading, testing::Values(2, 3));
 
 }  // namespace
 }  // namespace spheremap::render_detail
