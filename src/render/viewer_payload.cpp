@@ -28,8 +28,20 @@ class BlobWriter {
     for (int shift = 0; shift < 32; shift += 8) blob_.push_back(static_cast<char>((v >> shift) & 0xffu));
   }
   void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
-  void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
   void u8(std::uint8_t v) { blob_.push_back(static_cast<char>(v)); }
+  /// `count` words as u32 writes them, word(k) the k-th, stored with one resize for the whole array (the
+  /// arrays of a large surface hold millions of words).
+  template <typename Word>
+  void u32s(std::size_t count, Word&& word) {
+    static_assert(std::endian::native == std::endian::little, "u32 writes little-endian words");
+    const std::size_t at = blob_.size();
+    blob_.resize(at + 4 * count);
+    char* out = blob_.data() + at;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t v = word(k);
+      std::memcpy(out + 4 * k, &v, 4);
+    }
+  }
   // Keeps every array 4-byte aligned, as Float32Array / Int32Array views require.
   void align() {
     while (blob_.size() % 4 != 0) blob_.push_back('\0');
@@ -58,8 +70,8 @@ class StringTable {
 
 void pack_positions(BlobWriter& out, const std::string& name, const std::vector<Vec3>& positions) {
   out.begin(name, "float32", positions.size() * 3);
-  for (const Vec3& p : positions)
-    for (const double c : p) out.f32(static_cast<float>(c));
+  out.u32s(positions.size() * 3,
+           [&](std::size_t k) { return std::bit_cast<std::uint32_t>(static_cast<float>(positions[k / 3][k % 3])); });
 }
 
 void pack_atoms(BlobWriter& out, StringTable& strings, const std::vector<ViewerAtom>& atoms) {
@@ -80,7 +92,7 @@ Json pack_property(BlobWriter& out, const ViewerProperty& property, std::size_t 
   const std::string values = "property" + std::to_string(index) + "_values";
   const std::string table = "property" + std::to_string(index) + "_colours";
   out.begin(values, "float32", property.values.size());
-  for (const float v : property.values) out.f32(v);
+  out.u32s(property.values.size(), [&](std::size_t k) { return std::bit_cast<std::uint32_t>(property.values[k]); });
   out.begin(table, "uint8", 3 * kColourTableSize);
   for (const Rgb8& c : colour_table(property.scale)) out.u8(c.r), out.u8(c.g), out.u8(c.b);
   out.align();
@@ -105,10 +117,12 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
   pack_positions(out, "surface_positions", data.surface_positions);
   pack_positions(out, "sphere_positions", data.sphere_positions);
   out.begin("triangles", "uint32", data.triangles.size() * 3);
-  for (const Triangle& t : data.triangles)
-    for (const std::int32_t v : t) out.u32(static_cast<std::uint32_t>(v));
+  out.u32s(data.triangles.size() * 3,
+           [&](std::size_t k) { return static_cast<std::uint32_t>(data.triangles[k / 3][k % 3]); });
   out.begin("vertex_atoms", "int32", n);
-  for (std::size_t v = 0; v < n; ++v) out.i32(data.vertex_atoms.empty() ? -1 : data.vertex_atoms[v]);
+  out.u32s(n, [&](std::size_t v) {
+    return static_cast<std::uint32_t>(data.vertex_atoms.empty() ? -1 : data.vertex_atoms[v]);
+  });
   pack_atoms(out, strings, data.atoms);
   Json properties = Json::array();
   for (std::size_t i = 0; i < data.properties.size(); ++i)
