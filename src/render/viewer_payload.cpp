@@ -148,13 +148,13 @@ std::string deflate_zlib(std::string_view bytes, int level) {
   const std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
       libdeflate_alloc_compressor(level), libdeflate_free_compressor);
   if (compressor == nullptr) throw std::runtime_error("libdeflate could not allocate a compressor (out of memory?)");
-  std::string out(libdeflate_zlib_compress_bound(compressor.get(), bytes.size()), '\0');
-  const std::size_t size =
-      libdeflate_zlib_compress(compressor.get(), bytes.data(), bytes.size(), out.data(), out.size());
+  // A buffer of the bound's size, not zero-filled first (megabytes, of which the stream uses a fraction).
+  const std::size_t bound = libdeflate_zlib_compress_bound(compressor.get(), bytes.size());
+  const std::unique_ptr<char[]> buffer(new char[bound]);
+  const std::size_t size = libdeflate_zlib_compress(compressor.get(), bytes.data(), bytes.size(), buffer.get(), bound);
   // The buffer has the bound's size, so 0 (too small) means libdeflate broke its own contract.
   if (size == 0) throw std::runtime_error("libdeflate could not compress " + std::to_string(bytes.size()) + " bytes");
-  out.resize(size);
-  return out;
+  return std::string(buffer.get(), size);
 }
 
 std::string base64_encode(const std::string& bytes) {
