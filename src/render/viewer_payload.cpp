@@ -3,6 +3,7 @@
 
 #include <libdeflate.h>
 
+#include <array>
 #include <bit>
 #include <cstring>
 #include <map>
@@ -164,12 +165,16 @@ std::string base64_encode(const std::string& bytes) {
   char* o = out.data();
   // Whole groups of three bytes written in place (megabytes: no push_back's capacity check), then the tail.
   const std::size_t whole = bytes.size() / 3 * 3;
+  // Two characters per lookup: the pair of each 12-bit half of a group.
+  static const std::array<std::array<char, 2>, 4096> kPairs = [] {
+    std::array<std::array<char, 2>, 4096> pairs{};
+    for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {kAlphabet[k >> 6], kAlphabet[k & 63]};
+    return pairs;
+  }();
   for (std::size_t i = 0; i < whole; i += 3, o += 4) {
     const std::uint32_t group = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
-    o[0] = kAlphabet[(group >> 18) & 63];
-    o[1] = kAlphabet[(group >> 12) & 63];
-    o[2] = kAlphabet[(group >> 6) & 63];
-    o[3] = kAlphabet[group & 63];
+    std::memcpy(o, kPairs[group >> 12].data(), 2);
+    std::memcpy(o + 2, kPairs[group & 4095].data(), 2);
   }
   if (const std::size_t left = bytes.size() - whole; left > 0) {
     const std::uint32_t group = byte(whole) << 16 | (left > 1 ? byte(whole + 1) << 8 : 0);
