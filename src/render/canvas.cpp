@@ -11,9 +11,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <regex>
 #include <set>
@@ -121,20 +123,26 @@ std::string png_of(cairo_surface_t* surface, int width, int height) {
   cairo_surface_flush(surface);
   const unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
-  // The filtered image data: each row a filter-type byte (0, none) then its RGB bytes.
+  // The filtered image data: each row a filter-type byte (0, none) then its RGB bytes. Not zero-filled first: every
+  // byte is written below (and one more at the end, see there).
   const std::size_t row_size = 1 + static_cast<std::size_t>(width) * 3;
-  std::string filtered(row_size * static_cast<std::size_t>(height), '\0');
+  const std::size_t size = row_size * static_cast<std::size_t>(height);
+  const std::unique_ptr<std::uint8_t[]> filtered(new std::uint8_t[size + 1]);
   for (int y = 0; y < height; ++y) {
     const auto* row = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    auto* out_row = reinterpret_cast<std::uint8_t*>(filtered.data()) + row_size * static_cast<std::size_t>(y) + 1;
+    std::uint8_t* out_row = filtered.get() + row_size * static_cast<std::size_t>(y);
+    out_row[0] = 0;
     for (int x = 0; x < width; ++x) {
-      // The picture is painted white first, so every pixel is opaque.
-      out_row[3 * x] = static_cast<std::uint8_t>(row[x] >> 16);
-      out_row[3 * x + 1] = static_cast<std::uint8_t>(row[x] >> 8);
-      out_row[3 * x + 2] = static_cast<std::uint8_t>(row[x]);
+      // The picture is painted white first, so every pixel is opaque. Its bytes R, G, B and a zero, stored as
+      // one word: the zero is overwritten by the next pixel, or by the next row's filter byte (also a zero), or
+      // falls into the spare byte after the last row.
+      const std::uint32_t rgb0 = __builtin_bswap32(row[x]) >> 8;
+      std::memcpy(out_row + 1 + 3 * static_cast<std::size_t>(x), &rgb0, 4);
     }
   }
-  const std::string idat = detail::deflate_zlib(filtered, 1);
+  static_assert(std::endian::native == std::endian::little, "the word of a pixel's bytes is stored little-endian");
+  const std::string idat =
+      detail::deflate_zlib(std::string_view(reinterpret_cast<const char*>(filtered.get()), size), 1);
   std::string out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png != nullptr ? png_create_info_struct(png) : nullptr;

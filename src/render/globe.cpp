@@ -2,6 +2,7 @@
 #include "spheremap/render/globe.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -29,20 +30,36 @@ void add_residues(const Mesh& surface, Globe& globe) {
   if (chain == nullptr || number == nullptr) return;
   const TextAttribute* insertion = find_attribute(surface.text_attributes, attributes::kInsertionCode);
   const TextAttribute* name = find_attribute(surface.text_attributes, attributes::kResidueName);
-  std::map<ResidueKey, std::string> names;
-  std::vector<ResidueKey> keys;
-  keys.reserve(surface.vertex_count());
+  // The vertices' residues by their attributes' codes first (integers: cheap to compare), then each distinct one
+  // by its text (a few thousand, however many vertices): the same residues, names and order as keying every vertex
+  // by its text.
+  std::map<std::array<std::int32_t, 3>, std::int32_t> slots;  // codes -> slot, in order of first vertex
+  std::vector<std::size_t> first_vertex;                      // of each slot
+  std::vector<std::int32_t> vertex_slot(surface.vertex_count());
   for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
-    keys.emplace_back(chain->at(v), (*number)[v], insertion ? insertion->at(v) : std::string());
-    names.try_emplace(keys.back(), name ? name->at(v) : std::string());
+    const std::array<std::int32_t, 3> codes{chain->codes[v], (*number)[v], insertion ? insertion->codes[v] : -1};
+    const auto [slot, added] = slots.try_emplace(codes, static_cast<std::int32_t>(first_vertex.size()));
+    if (added) first_vertex.push_back(v);
+    vertex_slot[v] = slot->second;
+  }
+  std::map<ResidueKey, std::string> names;  // the name of the first vertex of each residue
+  std::vector<ResidueKey> slot_key;
+  slot_key.reserve(first_vertex.size());
+  for (const std::size_t v : first_vertex) {
+    slot_key.emplace_back(chain->at(v), (*number)[v], insertion ? insertion->at(v) : std::string());
+    names.try_emplace(slot_key.back(), name ? name->at(v) : std::string());
   }
   std::map<ResidueKey, std::int32_t> index;
   for (const auto& [key, residue_name] : names) {
     index.emplace(key, static_cast<std::int32_t>(globe.residues.size()));
     globe.residues.push_back({std::get<0>(key), std::get<1>(key), std::get<2>(key), residue_name});
   }
-  globe.vertex_residue.reserve(keys.size());
-  for (const ResidueKey& key : keys) globe.vertex_residue.push_back(index.at(key));
+  std::vector<std::int32_t> slot_residue;
+  slot_residue.reserve(slot_key.size());
+  for (const ResidueKey& key : slot_key) slot_residue.push_back(index.at(key));
+  globe.vertex_residue.reserve(vertex_slot.size());
+  for (const std::int32_t slot : vertex_slot)
+    globe.vertex_residue.push_back(slot_residue[static_cast<std::size_t>(slot)]);
 }
 
 SurfaceProperty octant_property(const std::vector<Vec3>& sphere) {

@@ -13,8 +13,8 @@
 
 #include "../util/parallel.hpp"
 #include "canvas.hpp"
+#include "panel_shading.hpp"
 #include "rasterizer.hpp"
-#include "sample_colours.hpp"
 #include "spheremap/error.hpp"
 #include "spheremap/render/map_picture.hpp"
 
@@ -64,12 +64,6 @@ std::vector<Vec3> vertex_normals(const std::vector<Vec3>& positions, const std::
   return normals;
 }
 
-// std::lround of a finite v >= 0 that fits (v minus its integer part is exact), without lround's call.
-std::uint32_t round_half_up(double v) {
-  const auto whole = static_cast<std::uint32_t>(v);
-  return v - whole >= 0.5 ? whole + 1 : whole;
-}
-
 struct PanelRect {
   double x, y, width, height;
   std::string label;
@@ -81,10 +75,16 @@ struct Colouring {
   ValueRange range;
 };
 
+// Colourings shaded together (at most render_detail::kMaxShadedFigures) and which triangles are smooth in each.
+struct ShadingBatch {
+  std::vector<render_detail::SampleColours> colours;
+  std::vector<std::uint64_t> smooth;
+};
+
 // One panel of each figure: the mesh (positions around `centre`, scaled by `scale` pixels per unit) seen through
 // `view`, rasterized once and shaded once per colouring (the geometry of a sample does not depend on the
 // property), as ARGB pixels (transparent background), one image per colouring.
-std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const std::vector<Colouring>& colourings,
+std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const std::vector<ShadingBatch>& batches,
                                                      const std::vector<Vec3>& positions,
                                                      const std::vector<Vec3>& normals, const Vec3& centre,
                                                      const View& view, double scale, int width, int height,
@@ -105,54 +105,11 @@ std::vector<std::vector<std::uint32_t>> render_panel(const Globe& globe, const s
   std::vector<double> light(positions.size());
   for (std::size_t v = 0; v < positions.size(); ++v)
     light[v] = kAmbient + kDiffuse * std::max(0.0, dot(view(normals[v]), light_direction));
-  const std::size_t figures = colourings.size();
-  std::vector<render_detail::SampleColours> colours;
-  for (const Colouring& c : colourings) colours.emplace_back(globe, *c.property, c.range);
-  std::vector<std::vector<std::uint32_t>> pixels(figures,
-                                                 std::vector<std::uint32_t>(static_cast<std::size_t>(width) * height));
-  detail::parallel_ranges(height, 8, detail::surface_threads(threads), [&](std::int64_t first, std::int64_t last) {
-    std::vector<std::array<double, 3>> sums(figures);  // r, g, b of each figure's pixel
-    // The triangle of the previous sample and what its samples share (most samples lie in their neighbour's).
-    std::int32_t current = -1;
-    render_detail::ScreenTriangle corners(screen[0], screen[0], screen[0]);
-    std::array<double, 3> corner_light{};
-    for (auto y = static_cast<int>(first); y < last; ++y)
-      for (int x = 0; x < width; ++x) {
-        std::fill(sums.begin(), sums.end(), std::array<double, 3>{0, 0, 0});
-        double covered = 0;
-        for (int sy = y * ss; sy < (y + 1) * ss; ++sy)
-          for (int sx = x * ss; sx < (x + 1) * ss; ++sx) {
-            const std::int32_t t = buffer.triangle[static_cast<std::size_t>(sy) * sw + sx];
-            if (t < 0) continue;
-            if (t != current) {
-              const Triangle& tri = globe.triangles[t];
-              corners = render_detail::ScreenTriangle(screen[tri[0]], screen[tri[1]], screen[tri[2]]);
-              corner_light = {light[tri[0]], light[tri[1]], light[tri[2]]};
-              current = t;
-            }
-            std::array<double, 3> w = corners.weights(sx, sy);
-            for (double& wk : w) wk = std::max(wk, 0.0);
-            const double total = w[0] + w[1] + w[2];
-            for (double& wk : w) wk = total > 0 ? wk / total : 1.0 / 3;
-            const std::array<float, 3> weights{static_cast<float>(w[0]), static_cast<float>(w[1]),
-                                               static_cast<float>(w[2])};
-            const double shade = w[0] * corner_light[0] + w[1] * corner_light[1] + w[2] * corner_light[2];
-            for (std::size_t f = 0; f < figures; ++f) {
-              const Rgb8 colour = colours[f](t, weights);
-              sums[f][0] += colour.r * shade, sums[f][1] += colour.g * shade, sums[f][2] += colour.b * shade;
-            }
-            covered += 1;
-          }
-        if (covered == 0) continue;
-        // Premultiplied ARGB: coverage is the alpha, so edges blend with the white page.
-        const double samples = static_cast<double>(ss) * ss;
-        const auto byte = [&](double v) { return round_half_up(std::clamp(v / samples, 0.0, 255.0)); };
-        const auto alpha = round_half_up(covered / samples * 255);
-        for (std::size_t f = 0; f < figures; ++f)
-          pixels[f][static_cast<std::size_t>(y) * width + x] =
-              (alpha << 24) | (byte(sums[f][0]) << 16) | (byte(sums[f][1]) << 8) | byte(sums[f][2]);
-      }
-  });
+  std::vector<std::vector<std::uint32_t>> pixels;
+  for (const ShadingBatch& batch : batches)
+    for (auto& figure : render_detail::shade_panel(buffer, width, height, supersampling, screen, globe.triangles, light,
+                                                   batch.colours, batch.smooth, threads))
+      pixels.push_back(std::move(figure));
   return pixels;
 }
 
@@ -287,12 +244,21 @@ std::vector<std::string> hemisphere_figures(const Globe& globe, const std::vecto
                                  {&globe.sphere, &globe.sphere, &origin, &front, globe_scale},
                                  {&globe.sphere, &globe.sphere, &origin, &back, globe_scale}}};
   const int threads = detail::surface_threads(options.threads);
+  // The colours of every panel's samples (a sample's colour does not depend on the panel), in batches shade_panel
+  // takes at once.
+  std::vector<ShadingBatch> batches;
+  for (std::size_t f = 0; f < colourings.size(); ++f) {
+    if (f % render_detail::kMaxShadedFigures == 0) batches.emplace_back();
+    batches.back().colours.emplace_back(globe, *colourings[f].property, colourings[f].range);
+  }
+  for (ShadingBatch& batch : batches)
+    batch.smooth = render_detail::smooth_triangles(batch.colours, globe.triangles.size());
   // The four panels side by side (each on one thread: its rasterization is serial), each shaded for every figure.
   std::array<std::vector<std::vector<std::uint32_t>>, 4> panel_pixels;  // [panel][figure]
   detail::parallel_chunks(4, threads, [&](std::int64_t k, int) {
     const Job& job = jobs[static_cast<std::size_t>(k)];
     panel_pixels[static_cast<std::size_t>(k)] =
-        render_panel(globe, colourings, *job.positions, *job.normals, *job.centre, *job.view, job.scale, side, side,
+        render_panel(globe, batches, *job.positions, *job.normals, *job.centre, *job.view, job.scale, side, side,
                      options.supersampling, 1);
   });
   // Then the figures side by side, each laid out (and encoded) on one thread.

@@ -22,6 +22,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = std::numbers::pi;
+constexpr int kFreshEvery = 32;  // pixels of a row between directions computed afresh (sample_map)
 
 // The plane point at (column + fx, row + fy) of a width x height image of the projection's rectangle.
 PlanePoint plane_point(const PlanePoint& half, int width, int height, double column, double row) {
@@ -42,11 +43,31 @@ MapSamples sample_map(const SphereLocator& locator, Projection projection, int w
       const RowUnprojection unproject_row(projection, plane_point(half, width, height, 0.5, row + 0.5).y);
       std::int32_t previous = -1;  // the triangle of the pixel to the left, which most pixels share (per row: the
                                    // result does not depend on how rows are split between threads)
+      // Along a row the longitude grows by a constant step (the longitude one pixel right of the centre line):
+      // each pixel's direction is its left neighbour's turned by that step about the axis, instead of a cosine and
+      // a sine of its own; evaluated afresh every kFreshEvery pixels and where the longitude is clamped, so that
+      // rounding never accumulates over more than that.
+      const auto step = unproject_row(2 * half.x / width);
+      const bool stepping = step && std::abs(step->longitude) < kPi;  // else a row of a pixel or two: all fresh
+      const double cos_step = stepping ? std::cos(step->longitude) : 1;
+      const double sin_step = stepping ? std::sin(step->longitude) : 0;
+      Vec3 direction{};
+      int turned = kFreshEvery;  // since the last fresh direction
       for (int column = 0; column < width; ++column) {
         const auto at = unproject_row(plane_point(half, width, height, column + 0.5, row + 0.5).x);
-        if (!at) continue;
-        const SphereHit hit = locate_on_sphere(locator, unproject_row.direction(at->longitude), kPi / 2 - at->latitude,
-                                               at->longitude, previous);
+        if (!at) {
+          turned = kFreshEvery;
+          continue;
+        }
+        if (stepping && turned < kFreshEvery && std::abs(at->longitude) < kPi) {
+          direction = {direction[0] * cos_step - direction[1] * sin_step,
+                       direction[0] * sin_step + direction[1] * cos_step, direction[2]};
+          ++turned;
+        } else {
+          direction = unproject_row.direction(at->longitude);
+          turned = 1;
+        }
+        const SphereHit hit = locate_on_sphere(locator, direction, kPi / 2 - at->latitude, at->longitude, previous);
         previous = hit.triangle;
         const std::size_t i = static_cast<std::size_t>(row) * width + column;
         samples.triangle[i] = hit.triangle;

@@ -3,6 +3,7 @@
 
 #include <libdeflate.h>
 
+#include <array>
 #include <bit>
 #include <cstring>
 #include <map>
@@ -28,8 +29,20 @@ class BlobWriter {
     for (int shift = 0; shift < 32; shift += 8) blob_.push_back(static_cast<char>((v >> shift) & 0xffu));
   }
   void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
-  void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
   void u8(std::uint8_t v) { blob_.push_back(static_cast<char>(v)); }
+  /// `count` words as u32 writes them, word(k) the k-th, stored with one resize for the whole array (the
+  /// arrays of a large surface hold millions of words).
+  template <typename Word>
+  void u32s(std::size_t count, Word&& word) {
+    static_assert(std::endian::native == std::endian::little, "u32 writes little-endian words");
+    const std::size_t at = blob_.size();
+    blob_.resize(at + 4 * count);
+    char* out = blob_.data() + at;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t v = word(k);
+      std::memcpy(out + 4 * k, &v, 4);
+    }
+  }
   // Keeps every array 4-byte aligned, as Float32Array / Int32Array views require.
   void align() {
     while (blob_.size() % 4 != 0) blob_.push_back('\0');
@@ -58,8 +71,8 @@ class StringTable {
 
 void pack_positions(BlobWriter& out, const std::string& name, const std::vector<Vec3>& positions) {
   out.begin(name, "float32", positions.size() * 3);
-  for (const Vec3& p : positions)
-    for (const double c : p) out.f32(static_cast<float>(c));
+  out.u32s(positions.size() * 3,
+           [&](std::size_t k) { return std::bit_cast<std::uint32_t>(static_cast<float>(positions[k / 3][k % 3])); });
 }
 
 void pack_atoms(BlobWriter& out, StringTable& strings, const std::vector<ViewerAtom>& atoms) {
@@ -80,7 +93,7 @@ Json pack_property(BlobWriter& out, const ViewerProperty& property, std::size_t 
   const std::string values = "property" + std::to_string(index) + "_values";
   const std::string table = "property" + std::to_string(index) + "_colours";
   out.begin(values, "float32", property.values.size());
-  for (const float v : property.values) out.f32(v);
+  out.u32s(property.values.size(), [&](std::size_t k) { return std::bit_cast<std::uint32_t>(property.values[k]); });
   out.begin(table, "uint8", 3 * kColourTableSize);
   for (const Rgb8& c : colour_table(property.scale)) out.u8(c.r), out.u8(c.g), out.u8(c.b);
   out.align();
@@ -105,10 +118,12 @@ ViewerPayload pack_viewer_payload(const ViewerData& data) {
   pack_positions(out, "surface_positions", data.surface_positions);
   pack_positions(out, "sphere_positions", data.sphere_positions);
   out.begin("triangles", "uint32", data.triangles.size() * 3);
-  for (const Triangle& t : data.triangles)
-    for (const std::int32_t v : t) out.u32(static_cast<std::uint32_t>(v));
+  out.u32s(data.triangles.size() * 3,
+           [&](std::size_t k) { return static_cast<std::uint32_t>(data.triangles[k / 3][k % 3]); });
   out.begin("vertex_atoms", "int32", n);
-  for (std::size_t v = 0; v < n; ++v) out.i32(data.vertex_atoms.empty() ? -1 : data.vertex_atoms[v]);
+  out.u32s(n, [&](std::size_t v) {
+    return static_cast<std::uint32_t>(data.vertex_atoms.empty() ? -1 : data.vertex_atoms[v]);
+  });
   pack_atoms(out, strings, data.atoms);
   Json properties = Json::array();
   for (std::size_t i = 0; i < data.properties.size(); ++i)
@@ -134,13 +149,13 @@ std::string deflate_zlib(std::string_view bytes, int level) {
   const std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
       libdeflate_alloc_compressor(level), libdeflate_free_compressor);
   if (compressor == nullptr) throw std::runtime_error("libdeflate could not allocate a compressor (out of memory?)");
-  std::string out(libdeflate_zlib_compress_bound(compressor.get(), bytes.size()), '\0');
-  const std::size_t size =
-      libdeflate_zlib_compress(compressor.get(), bytes.data(), bytes.size(), out.data(), out.size());
+  // A buffer of the bound's size, not zero-filled first (megabytes, of which the stream uses a fraction).
+  const std::size_t bound = libdeflate_zlib_compress_bound(compressor.get(), bytes.size());
+  const std::unique_ptr<char[]> buffer(new char[bound]);
+  const std::size_t size = libdeflate_zlib_compress(compressor.get(), bytes.data(), bytes.size(), buffer.get(), bound);
   // The buffer has the bound's size, so 0 (too small) means libdeflate broke its own contract.
   if (size == 0) throw std::runtime_error("libdeflate could not compress " + std::to_string(bytes.size()) + " bytes");
-  out.resize(size);
-  return out;
+  return std::string(buffer.get(), size);
 }
 
 std::string base64_encode(const std::string& bytes) {
@@ -150,12 +165,16 @@ std::string base64_encode(const std::string& bytes) {
   char* o = out.data();
   // Whole groups of three bytes written in place (megabytes: no push_back's capacity check), then the tail.
   const std::size_t whole = bytes.size() / 3 * 3;
+  // Two characters per lookup: the pair of each 12-bit half of a group.
+  static const std::array<std::array<char, 2>, 4096> kPairs = [] {
+    std::array<std::array<char, 2>, 4096> pairs{};
+    for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k] = {kAlphabet[k >> 6], kAlphabet[k & 63]};
+    return pairs;
+  }();
   for (std::size_t i = 0; i < whole; i += 3, o += 4) {
     const std::uint32_t group = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
-    o[0] = kAlphabet[(group >> 18) & 63];
-    o[1] = kAlphabet[(group >> 12) & 63];
-    o[2] = kAlphabet[(group >> 6) & 63];
-    o[3] = kAlphabet[group & 63];
+    std::memcpy(o, kPairs[group >> 12].data(), 2);
+    std::memcpy(o + 2, kPairs[group & 4095].data(), 2);
   }
   if (const std::size_t left = bytes.size() - whole; left > 0) {
     const std::uint32_t group = byte(whole) << 16 | (left > 1 ? byte(whole + 1) << 8 : 0);

@@ -11,22 +11,21 @@
 namespace spheremap::render_detail {
 namespace {
 
-// rasterize without its shortcuts: each sample of the buffer tested against each facing triangle.
+// rasterize without its shortcuts: each sample of the buffer tested against each facing triangle, its edge
+// functions evaluated there (not stepped along the row).
 IdBuffer rasterize_every_sample(const std::vector<Vec3>& screen, const std::vector<Triangle>& triangles, int width,
                                 int height) {
   IdBuffer buffer = make_id_buffer(width, height);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Vec3& a = screen[triangles[t][0]];
-    const Vec3& b = screen[triangles[t][1]];
-    const Vec3& c = screen[triangles[t][2]];
-    const double area = edge(a, b, c[0], c[1]);
-    if (!(area < 0)) continue;
+    const FixedTriangle f(screen[triangles[t][0]], screen[triangles[t][1]], screen[triangles[t][2]]);
+    const std::int64_t area = f.area();
+    if (area >= 0) continue;
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
-        const double px = x + 0.5, py = y + 0.5;
-        const double wa = edge(b, c, px, py), wb = edge(c, a, px, py), wc = edge(a, b, px, py);
+        const std::int64_t px = FixedTriangle::centre(x), py = FixedTriangle::centre(y);
+        const std::int64_t wa = f.edge(1, 2, px, py), wb = f.edge(2, 0, px, py), wc = f.edge(0, 1, px, py);
         if (wa > 0 || wb > 0 || wc > 0) continue;
-        const auto z = static_cast<float>((wa * a[2] + wb * b[2] + wc * c[2]) / area);
+        const float z = f.depth(wa, wb, wc, static_cast<double>(area));
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         if (z > buffer.depth[i]) {
           buffer.depth[i] = z;
@@ -114,6 +113,45 @@ TEST(Rasterizer, EachTriangleAloneKeepsItsSamples) {
     }
   }
   EXPECT_GT(compared, 2000);
+}
+
+TEST(Rasterizer, TrianglesThatTileARegionLeaveNoSampleUncovered) {
+  // A jittered grid over a rectangle whose sides are not on sample centres: every sample centre inside it lies in
+  // some triangle, also those on (or within rounding of) a shared edge, because the snapped edges are exact.
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  constexpr int kCells = 23;
+  constexpr double kLeft = 2.3, kTop = 1.7, kSide = 59.4;
+  const double spacing = kSide / kCells;
+  std::vector<Vec3> screen;
+  for (int j = 0; j <= kCells; ++j)
+    for (int i = 0; i <= kCells; ++i) {
+      const bool border = i == 0 || j == 0 || i == kCells || j == kCells;
+      Vec3 p{kLeft + (i + (border ? 0 : jitter(random))) * spacing,
+             kTop + (j + (border ? 0 : jitter(random))) * spacing, 0};
+      // Half the inner corners on sample centres or between two: many edges pass exactly through samples.
+      if (!border && (i + j) % 2 == 0) p = {std::round(p[0] * 2) / 2, std::round(p[1] * 2) / 2, 0};
+      screen.push_back(p);
+    }
+  std::vector<Triangle> triangles;
+  const auto at = [](int i, int j) { return static_cast<std::int32_t>(j * (kCells + 1) + i); };
+  for (int j = 0; j < kCells; ++j)
+    for (int i = 0; i < kCells; ++i) {
+      triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+      triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+    }
+  for (const Triangle& t : triangles)
+    ASSERT_LT(edge(screen[t[0]], screen[t[1]], screen[t[2]][0], screen[t[2]][1]), 0);  // all face the viewer
+  IdBuffer buffer = make_id_buffer(64, 64);
+  rasterize(screen, triangles, buffer);
+  int inside = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      if (!(x + 0.5 > kLeft && x + 0.5 < kLeft + kSide && y + 0.5 > kTop && y + 0.5 < kTop + kSide)) continue;
+      ++inside;
+      EXPECT_GE(buffer.triangle[static_cast<std::size_t>(y) * 64 + x], 0) << x << ", " << y;
+    }
+  EXPECT_GT(inside, 3000);
 }
 
 }  // namespace
