@@ -60,8 +60,8 @@ constexpr double kAreaRelativeTolerance = 1e-4;
 constexpr double kAreaLooseTolerance = 1e-3;
 constexpr double kAreaGoalOctantRms = 1.5;
 // A large mesh whose start's mean |ln area ratio| is above this gets a coarse start (coarse_start.hpp):
-// areas that far off are off over whole regions (the dumbbell's two bulbs: 3.5, 15 steps from the paper's
-// map, 3 from the coarse start), which the coarse mesh moves in cheap steps; nearer, the distortion is
+// areas that far off are off over whole regions (the dumbbell's two bulbs: 3.5, 18 steps from the paper's
+// map, 6 from the coarse start), which the coarse mesh moves in cheap steps; nearer, the distortion is
 // mostly the triangles' own (5hr7's surface: 0.32, and 21 steps from a coarse start instead of 18).
 constexpr double kCoarseStartLogRatio = 0.5;
 
