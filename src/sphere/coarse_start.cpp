@@ -106,7 +106,9 @@ Vec3 carry(const Vec3& p, const Triangle& t, const std::vector<Vec3>& before, co
 bool coarse_start(const Mesh& mesh, std::vector<Vec3>& sphere, std::int32_t north, std::int32_t south,
                   const SphereOptimizeOptions& options, CoarseStart& report) {
   const auto vertices = static_cast<std::int64_t>(mesh.vertex_count());
-  if (vertices < kCoarseStartMinVertices) return false;
+  // A start that is not valid (rounding can flip a certified, nearly flat triangle when the map is
+  // turned back to the construction's frame) gets no coarse start; the optimization refuses it anyway.
+  if (vertices < kCoarseStartMinVertices || !valid_map(mesh.triangles, sphere)) return false;
   SimplifyOptions simplify;
   simplify.target_edge_length = mean_edge_length(mesh) * std::sqrt(kCoarsening);
   simplify.max_error = std::numeric_limits<double>::max();  // only the map's validity matters here

@@ -26,7 +26,8 @@ struct CoarseStart {
 /// own when it is still large), and every vertex is carried along with the coarse triangle of the old
 /// coarse map that holds its point (in barycentric coordinates of the central projection); the few
 /// triangles this folds are untangled.
-/// Returns false, `sphere` unchanged, when the mesh has fewer than kCoarseStartMinVertices vertices,
+/// Returns false, `sphere` unchanged, when `sphere` is not a valid map (a triangle not positively
+/// oriented), the mesh has fewer than kCoarseStartMinVertices vertices,
 /// simplifies to more than a quarter of them, a point cannot be located, or the result is not a valid map
 /// with the poles where they were; else true with the map in `sphere` and `report` filled.
 /// Preconditions: `mesh` closed, oriented, genus 0; `sphere` a valid map of it (every triangle positively

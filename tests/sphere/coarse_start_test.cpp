@@ -141,6 +141,20 @@ TEST(CoarseStart, LeavesSmallMeshesAlone) {
   EXPECT_EQ(report.levels, 0);
 }
 
+// A start that is not a valid map (here: mirrored, every triangle negative) gets no coarse start and is
+// left as it was, instead of an exception from the simplification it could not guard.
+TEST(CoarseStart, LeavesAStartThatIsNotValidAlone) {
+  const Start start = papers_map(make_dumbbell(3.0, 0.4, 160, 126));
+  std::vector<Vec3> mirrored = start.paper.sphere;
+  for (auto& p : mirrored) p[0] = -p[0];
+  const std::vector<Vec3> before = mirrored;
+  detail::CoarseStart report;
+  EXPECT_FALSE(detail::coarse_start(start.mesh, mirrored, start.paper.poles.north, start.paper.poles.south,
+                                    area_options(), report));
+  EXPECT_EQ(mirrored, before);
+  EXPECT_EQ(report.levels, 0);
+}
+
 // Through map_to_sphere: the area objective on the large dumbbell starts from the coarse map, says so,
 // and its map is certified and equal-area within the goal.
 TEST(CoarseStart, IsWhereTheAreaObjectiveStartsOnLargeMeshes) {
