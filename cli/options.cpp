@@ -170,7 +170,8 @@ void MapCliOptions::add(CLI::App* command, WeightingCount count) {
       ->check(CLI::IsMember({"paper", "area", "conformal", "balanced"}));
   command
       ->add_option("--objective-iterations", job.map.objective_max_iterations,
-                   "With --objective: at most this many Newton steps (default 300)")
+                   "With --objective: at most this many Newton steps on the mesh, all stages together (default 300; "
+                   "each coarse level of the area objective's coarse start has the same cap)")
       ->check(CLI::PositiveNumber);
   command->add_flag("--no-repair", no_repair,
                     "The paper's algorithm only: no re-weighting, no untangling (the certificate still runs)");
