@@ -38,6 +38,11 @@ class CompensatedSum {
 
 bool Certificate::certified() const { return folded == 0 && collapsed == 0 && std::fabs(coverage - 1) < 1e-9; }
 
+bool positively_oriented(const std::vector<Triangle>& triangles, const std::vector<Vec3>& sphere) {
+  return std::all_of(triangles.begin(), triangles.end(),
+                     [&](const Triangle& t) { return orientation_sign(sphere[t[0]], sphere[t[1]], sphere[t[2]]) > 0; });
+}
+
 double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   // tan(Ω/2) = N / D with N = det[a, b, c] and D = 1 + a·b + b·c + c·a. Both are evaluated so that
   // they stay accurate when they are tiny, which happens for small triangles (N) and for thin

@@ -22,11 +22,6 @@ constexpr double kCoarseMinAngleDegrees = 5;
 // thousands on GroEL's surface, where 20 sweeps did not reach every one).
 constexpr int kUntanglingSweeps = 200;
 
-bool valid_map(const std::vector<Triangle>& triangles, const std::vector<Vec3>& sphere) {
-  return std::all_of(triangles.begin(), triangles.end(),
-                     [&](const Triangle& t) { return orientation_sign(sphere[t[0]], sphere[t[1]], sphere[t[2]]) > 0; });
-}
-
 double mean_edge_length(const Mesh& mesh) {
   double sum = 0;
   for (const auto& t : mesh.triangles)
@@ -36,10 +31,9 @@ double mean_edge_length(const Mesh& mesh) {
 
 // The vertices in breadth-first order from `first`: consecutive ones lie close together, so each walk
 // below starts next to its point.
-std::vector<std::int32_t> breadth_first_order(const Mesh& mesh, std::int32_t first) {
-  const VertexRings rings = build_vertex_rings(static_cast<std::int32_t>(mesh.vertex_count()), mesh.triangles);
+std::vector<std::int32_t> breadth_first_order(const VertexRings& rings, std::int32_t first) {
   std::vector<std::int32_t> order{first};
-  std::vector<char> seen(mesh.vertex_count(), 0);
+  std::vector<char> seen(static_cast<std::size_t>(rings.vertex_count()), 0);
   seen[first] = 1;
   for (std::size_t i = 0; i < order.size(); ++i)
     for (const auto w : rings.ring(order[i]))
@@ -108,7 +102,7 @@ bool coarse_start(const Mesh& mesh, std::vector<Vec3>& sphere, std::int32_t nort
   const auto vertices = static_cast<std::int64_t>(mesh.vertex_count());
   // A start that is not valid (rounding can flip a certified, nearly flat triangle when the map is
   // turned back to the construction's frame) gets no coarse start; the optimization refuses it anyway.
-  if (vertices < kCoarseStartMinVertices || !valid_map(mesh.triangles, sphere)) return false;
+  if (vertices < kCoarseStartMinVertices || !positively_oriented(mesh.triangles, sphere)) return false;
   SimplifyOptions simplify;
   simplify.target_edge_length = mean_edge_length(mesh) * std::sqrt(kCoarsening);
   simplify.max_error = std::numeric_limits<double>::max();  // only the map's validity matters here
@@ -145,7 +139,8 @@ bool coarse_start(const Mesh& mesh, std::vector<Vec3>& sphere, std::int32_t nort
   const Walker walker(coarse.triangles, before);
   std::vector<Vec3> carried(sphere.size());
   std::int64_t hint = 0;
-  for (const auto v : breadth_first_order(mesh, north)) {
+  const VertexRings rings = build_vertex_rings(static_cast<std::int32_t>(vertices), mesh.triangles);
+  for (const auto v : breadth_first_order(rings, north)) {
     if (coarse_of[v] >= 0) {
       carried[v] = after[coarse_of[v]];
       continue;
@@ -156,13 +151,12 @@ bool coarse_start(const Mesh& mesh, std::vector<Vec3>& sphere, std::int32_t nort
     hint = t;
   }
   std::int64_t moves = 0;
-  if (!valid_map(mesh.triangles, carried)) {
-    const VertexRings rings = build_vertex_rings(static_cast<std::int32_t>(vertices), mesh.triangles);
+  if (!positively_oriented(mesh.triangles, carried)) {
     std::vector<char> poles(sphere.size(), 0);
     poles[north] = poles[south] = 1;
     moves = untangle_on_sphere(mesh, rings, untangling_frame(mesh, rings), carried, kDefaultCollapseFloor,
                                kUntanglingSweeps, poles);
-    if (!valid_map(mesh.triangles, carried)) return false;
+    if (!positively_oriented(mesh.triangles, carried)) return false;
   }
   // The coarse optimization and the untangler keep the poles; the optimization to come needs them exact.
   if (!(carried[north] == sphere[north]) || !(carried[south] == sphere[south])) return false;

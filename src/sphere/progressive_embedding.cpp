@@ -12,6 +12,7 @@
 
 #include "spheremap/geometry/predicates.hpp"
 #include "spheremap/geometry/vec.hpp"
+#include "spheremap/sphere/certify.hpp"
 #include "spheremap/sphere/embedding.hpp"
 
 namespace spheremap {
@@ -319,9 +320,7 @@ bool embed_base(std::int32_t vertex_count, const std::vector<Triangle>& base, st
   const auto base_sphere = convex_embedding(base_vertices, local, index.local[north], index.local[south]);
   sphere.assign(vertex_count, Vec3{0, 0, 0});
   for (std::size_t i = 0; i < index.vertices.size(); ++i) sphere[index.vertices[i]] = base_sphere[i];
-  for (const auto& tri : base)
-    if (orientation_sign(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]) <= 0) return false;
-  return true;
+  return positively_oriented(base, sphere);
 }
 
 }  // namespace
@@ -373,9 +372,8 @@ ProgressiveEmbeddingReport progressive_embedding(const Mesh& mesh, std::int32_t 
   report.energy_before = result.energy_before;
   report.energy_after = result.energy_after;
   report.final_stop_reason = result.stop_reason;
-  report.valid = sphere[north] == Vec3{0, 0, 1} && sphere[south] == Vec3{0, 0, -1};
-  for (const auto& tri : mesh.triangles)
-    if (orientation_sign(sphere[tri[0]], sphere[tri[1]], sphere[tri[2]]) <= 0) report.valid = false;
+  report.valid =
+      sphere[north] == Vec3{0, 0, 1} && sphere[south] == Vec3{0, 0, -1} && positively_oriented(mesh.triangles, sphere);
   return report;
 }
 

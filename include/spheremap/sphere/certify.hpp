@@ -41,6 +41,11 @@ Certificate certify_sphere_map(const Mesh& surface, const std::vector<Vec3>& sph
                                double collapse_floor = kDefaultCollapseFloor,
                                std::vector<double>* solid_angles = nullptr);
 
+/// Whether every triangle of `triangles` is positively oriented on `sphere` (exact orientation_sign > 0):
+/// the first condition of certify_sphere_map, alone, stopping at the first that is not.
+/// Preconditions: triangle indices valid for `sphere`. Never throws.
+bool positively_oriented(const std::vector<Triangle>& triangles, const std::vector<Vec3>& sphere);
+
 /// Signed solid angle of the spherical triangle abc (unit vectors), Van Oosterom & Strackee 1983.
 /// Never throws.
 double signed_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c);
